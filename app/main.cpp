@@ -1,0 +1,161 @@
+// manylight: the command line. Parses arguments, calls the libraries, turns errors into a
+// one-line "manylight: FILE: problem" and a named exit code. No rendering logic lives here.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "gl/context.h"
+#include "render/output_file.h"
+#include "render/render_job.h"
+#include "scene/gltf_loader.h"
+
+namespace {
+
+using namespace manylight;
+using Clock = std::chrono::steady_clock;
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitFailure = 1,  // bad input or a failed render
+  kExitUsage = 2,    // bad command line
+  kExitNoContext = 3,  // no OpenGL 3.3 context could be created
+};
+
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+glm::vec3 parseRgb(const std::string& s) {
+  glm::vec3 v;
+  char tail = 0;
+  if (std::sscanf(s.c_str(), "%f,%f,%f%c", &v.r, &v.g, &v.b, &tail) != 3 || !(v == v)) {
+    throw CLI::ValidationError("--ambient", "expected R,G,B, got '" + s + "'");
+  }
+  return v;
+}
+
+struct RenderArgs {
+  std::string scene, output, size = "640x480", method = "reference", backend = "auto";
+  std::string ambient = "0,0,0", statsPath;
+  int camera = -1;
+  float exposure = 0.0f;
+  std::size_t lightBudget = 1u << 20;
+  bool verbose = false;
+};
+
+int runRender(const RenderArgs& a, Clock::time_point processStart) {
+  RenderRequest request;
+  char tail = 0;
+  if (std::sscanf(a.size.c_str(), "%dx%d%c", &request.width, &request.height, &tail) != 2 ||
+      request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384) {
+    std::cerr << "manylight: --size: expected WxH within 1..16384, got '" << a.size << "'\n";
+    return kExitUsage;
+  }
+  request.camera = a.camera;
+  request.ambient = parseRgb(a.ambient);
+  request.method = parseMethod(a.method);
+  const gl::Backend backend = gl::parseBackend(a.backend);
+
+  const auto loadStart = Clock::now();
+  LoadOptions options;
+  options.lightBudget = a.lightBudget;
+  const Scene scene = loadGltf(a.scene, options);
+  const double loadMs = msSince(loadStart);
+  for (const std::string& w : scene.warnings) std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";
+
+  std::vector<std::string> attempts;
+  std::unique_ptr<gl::Context> context;
+  try {
+    context = gl::createContext(backend, &attempts);
+  } catch (const gl::GlError& e) {
+    std::cerr << "manylight: " << e.what() << "\n";
+    return kExitNoContext;
+  }
+  if (a.verbose) {
+    for (const std::string& line : attempts) std::cerr << "manylight: context " << line << "\n";
+    std::cerr << "manylight: using " << context->backend() << ", " << context->renderer() << ", "
+              << context->version() << "\n";
+  }
+  RenderOutcome out = renderScene(scene, request);
+  if (out.framed && a.verbose) std::cerr << "manylight: " << a.scene << ": no camera; framing the bounds\n";
+  if (out.defaultRig) {
+    std::cerr << "manylight: " << a.scene << ": no lights; using the default three-light rig\n";
+  }
+  writeImage(out.image, a.output, a.exposure);
+  if (!a.statsPath.empty()) {
+    nlohmann::json stats = {
+        {"scene", a.scene},
+        {"output", a.output},
+        {"method", methodName(request.method)},
+        {"backend", context->backend()},
+        {"renderer", context->renderer()},
+        {"gl_version", context->version()},
+        {"width", request.width},
+        {"height", request.height},
+        {"lights", out.lightCount},
+        {"default_light_rig", out.defaultRig},
+        {"framed_camera", out.framed},
+        {"lighting_passes", out.frame.lightingPasses},
+        {"load_ms", loadMs},
+        {"render_ms", out.frame.renderMs},
+        {"total_ms", msSince(processStart)},
+    };
+    writeTextFileAtomic(a.statsPath, stats.dump(2) + "\n");
+  }
+  if (a.verbose) {
+    std::cerr << "manylight: " << a.output << ": " << request.width << "x" << request.height
+              << ", " << out.lightCount << " lights, load " << loadMs << " ms, render "
+              << out.frame.renderMs << " ms\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const auto processStart = Clock::now();
+  CLI::App app{"manylight: headless OpenGL renderer for glTF scenes with many lights"};
+  app.require_subcommand(1);
+  RenderArgs r;
+  CLI::App* render = app.add_subcommand("render", "Render a glTF scene (.gltf or .glb) to an image");
+  render->add_option("scene", r.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  render->add_option("-o,--output", r.output, "Output image: .png (8-bit sRGB) or .exr (linear float)")->required();
+  render->add_option("--size", r.size, "Image size WxH")->capture_default_str();
+  render->add_option("--camera", r.camera,
+                     "Index of the glTF camera to use (default: the first; with none, frame the "
+                     "scene's bounds from a 3/4 view)");
+  render->add_option("--method", r.method, "Lighting method: reference (every light at every pixel)")
+      ->capture_default_str();
+  render->add_option("--backend", r.backend, "Context: auto (EGL device, EGL surfaceless, OSMesa), egl, osmesa")
+      ->capture_default_str();
+  render->add_option("--ambient", r.ambient, "Ambient radiance R,G,B, multiplied by the albedo")
+      ->capture_default_str();
+  render->add_option("--exposure", r.exposure, "Exposure in EV: the image is scaled by 2^EV")
+      ->capture_default_str();
+  render->add_option("--light-budget", r.lightBudget, "Most lights a scene may have")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(1), std::size_t(1) << 26));
+  render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
+  render->add_flag("-v,--verbose", r.verbose, "Say which context was chosen and how long things took");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitOk : kExitUsage;
+  }
+  try {
+    if (*render) return runRender(r, processStart);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "manylight: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const Error& e) {
+    std::cerr << "manylight: " << e.what() << "\n";
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    std::cerr << "manylight: " << r.scene << ": " << e.what() << "\n";
+    return kExitFailure;
+  }
+  return kExitUsage;
+}

@@ -1,0 +1,35 @@
+# Script mode: assembles one shader stage from its parts and validates it with glslangValidator.
+#   -DOUT=<file.vert|file.frag> -DPARTS=<a.glsl|b.glsl> -DVARIANTS=<"A=1 B=1|C=1"> -DVALIDATOR=<exe>
+# The assembled text starts with "#version 330 core"; at run time the C++ side inserts its
+# #define lines right after it. Every variant (a set of defines) is validated, so a broken
+# shader fails the build rather than a user's render.
+string(REPLACE "|" ";" part_list "${PARTS}")
+set(text "#version 330 core\n")
+foreach(part IN LISTS part_list)
+  file(READ "${part}" body)
+  string(APPEND text "${body}")
+endforeach()
+file(WRITE "${OUT}.tmp" "${text}")
+
+if(VARIANTS STREQUAL "")
+  set(VARIANTS "NONE")
+endif()
+string(REPLACE "|" ";" variant_list "${VARIANTS}")
+foreach(variant IN LISTS variant_list)
+  set(define_args "")
+  if(NOT variant STREQUAL "NONE")
+    separate_arguments(defs UNIX_COMMAND "${variant}")
+    foreach(d IN LISTS defs)
+      list(APPEND define_args "-D${d}")
+    endforeach()
+  endif()
+  get_filename_component(ext "${OUT}" LAST_EXT)
+  string(SUBSTRING "${ext}" 1 -1 stage)
+  execute_process(COMMAND "${VALIDATOR}" -S ${stage} ${define_args} "${OUT}.tmp"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    file(REMOVE "${OUT}.tmp")
+    message(FATAL_ERROR "glslangValidator rejected ${OUT} (variant: ${variant}):\n${out}${err}")
+  endif()
+endforeach()
+file(RENAME "${OUT}.tmp" "${OUT}")

@@ -1,0 +1,53 @@
+#include "render/gbuffer.h"
+
+#include "gl/context.h"
+
+namespace manylight {
+
+using namespace gl::api;
+
+namespace {
+
+void allocate(const gl::Texture& t, GLint internal, GLenum format, GLenum type, int w, int h) {
+  glBindTexture(GL_TEXTURE_2D, t.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format, type, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+
+void checkComplete(const char* which) {
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    throw gl::GlError(std::string(which) + " framebuffer is incomplete (status 0x" +
+                      [&] { char b[16]; std::snprintf(b, sizeof b, "%04X", status); return std::string(b); }() +
+                      ")");
+  }
+}
+
+}  // namespace
+
+GBuffer::GBuffer(int width, int height) : width_(width), height_(height) {
+  for (const gl::Texture& t : targets_) allocate(t, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
+  allocate(depth_, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
+  glBindTexture(GL_TEXTURE_2D, 0);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, geometry_.id());
+  GLenum buffers[kTargetCount];
+  for (int i = 0; i < kTargetCount; ++i) {
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, targets_[i].id(), 0);
+    buffers[i] = GL_COLOR_ATTACHMENT0 + i;
+  }
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_.id(), 0);
+  glDrawBuffers(kTargetCount, buffers);
+  checkComplete("G-buffer");
+
+  glBindFramebuffer(GL_FRAMEBUFFER, lighting_.id());
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, targets_[kRadiance].id(), 0);
+  const GLenum one = GL_COLOR_ATTACHMENT0;
+  glDrawBuffers(1, &one);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  checkComplete("lighting");
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+}  // namespace manylight

@@ -1,0 +1,33 @@
+#pragma once
+// The deferred path's render targets: the G-buffer (position, normal, albedo, specular,
+// depth) and the float radiance target that the G-buffer pass starts and the lighting
+// passes add to.
+#include <array>
+
+#include "gl/objects.h"
+
+namespace manylight {
+
+class GBuffer {
+ public:
+  enum Target { kPosition, kNormal, kAlbedo, kSpecular, kRadiance, kTargetCount };
+
+  // Throws gl::GlError if the driver cannot render to these formats.
+  GBuffer(int width, int height);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const gl::Texture& target(Target t) const { return targets_[t]; }
+  // Writes all targets (the G-buffer pass).
+  const gl::Framebuffer& geometryFramebuffer() const { return geometry_; }
+  // Writes only the radiance target, so the lighting passes may sample the others.
+  const gl::Framebuffer& lightingFramebuffer() const { return lighting_; }
+
+ private:
+  int width_, height_;
+  std::array<gl::Texture, kTargetCount> targets_;
+  gl::Texture depth_;
+  gl::Framebuffer geometry_, lighting_;
+};
+
+}  // namespace manylight

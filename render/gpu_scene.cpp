@@ -1,0 +1,96 @@
+#include "render/gpu_scene.h"
+
+#include "bake/light_pack.h"
+#include "bake/light_texture_layout.h"
+#include "gl/context.h"
+
+namespace manylight {
+
+using namespace gl::api;
+
+namespace {
+
+template <typename T>
+gl::Buffer uploadAttribute(const std::vector<T>& data, GLuint location, GLint components) {
+  gl::Buffer buffer;
+  glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(T)), data.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
+  return buffer;
+}
+
+gl::Texture uploadTexture(const Texture& t) {
+  gl::Texture tex;
+  glBindTexture(GL_TEXTURE_2D, tex.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, t.width, t.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               t.rgba.data());
+  auto wrap = [](bool repeat, bool mirror) {
+    return GLint(mirror ? GL_MIRRORED_REPEAT : repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  };
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap(t.repeatS, t.mirrorS));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap(t.repeatT, t.mirrorT));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, t.linearMag ? GL_LINEAR : GL_NEAREST);
+  GLint minFilter = t.linearMin ? GL_LINEAR : GL_NEAREST;
+  if (t.mipmaps) {
+    minFilter = t.linearMin ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR;
+    glGenerateMipmap(GL_TEXTURE_2D);
+  }
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
+  return tex;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
+  for (const Mesh& mesh : scene.meshes) {
+    std::vector<GpuPrimitive>& prims = meshes_.emplace_back();
+    for (const Primitive& p : mesh.primitives) {
+      GpuPrimitive& g = prims.emplace_back();
+      glBindVertexArray(g.vao.id());
+      g.buffers.push_back(uploadAttribute(p.positions, 0, 3));
+      g.buffers.push_back(uploadAttribute(p.normals, 1, 3));
+      g.hasTexcoords = !p.texcoords.empty();
+      g.hasColours = !p.colours.empty();
+      if (g.hasTexcoords) g.buffers.push_back(uploadAttribute(p.texcoords, 2, 2));
+      if (g.hasColours) g.buffers.push_back(uploadAttribute(p.colours, 3, 4));
+      gl::Buffer& indices = g.buffers.emplace_back();
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices.id());
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(p.indices.size() * 4), p.indices.data(),
+                   GL_STATIC_DRAW);
+      g.indexCount = GLsizei(p.indices.size());
+      g.material = p.material;
+    }
+  }
+  glBindVertexArray(0);
+  for (const Texture& t : scene.textures) textures_.push_back(uploadTexture(t));
+  for (const MeshInstance& inst : scene.instances) {
+    for (const GpuPrimitive& g : meshes_[inst.mesh]) {
+      draws_.push_back({&g.vao, g.indexCount, g.hasTexcoords, g.hasColours, g.material, inst.world,
+                        glm::determinant(glm::mat3(inst.world)) < 0.0f});
+    }
+  }
+
+  // The light texture holds exactly the scene's lights (one zero light when there are none,
+  // so the sampler is always complete).
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  const std::size_t texels = std::max<std::size_t>(lights.size(), 1) * layout::kTexelsPerLight;
+  if (texels > std::size_t(maxTexels)) {
+    throw gl::GlError(std::to_string(lights.size()) + " lights need " + std::to_string(texels) +
+                      " texels, the driver's texture buffers hold " + std::to_string(maxTexels));
+  }
+  std::vector<float> packed = packLights(lights);
+  packed.resize(texels * 4, 0.0f);
+  glBindBuffer(GL_TEXTURE_BUFFER, lightBuffer_.id());
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(packed.size() * sizeof(float)), packed.data(),
+               GL_STATIC_DRAW);
+  glBindTexture(GL_TEXTURE_BUFFER, lightTexture_.id());
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, lightBuffer_.id());
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  lightCount_ = int(lights.size());
+}
+
+}  // namespace manylight

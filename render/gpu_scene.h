@@ -1,0 +1,46 @@
+#pragma once
+// A scene uploaded to the GPU once: vertex and index buffers per primitive, textures, and
+// the light texture sized to the scene's lights (never to the budget).
+#include <vector>
+
+#include "gl/objects.h"
+#include "scene/scene.h"
+
+namespace manylight {
+
+class GpuScene {
+ public:
+  // Uploads `scene` with `lights` (the scene's own, or a default rig). Throws gl::GlError
+  // when the driver cannot hold the lights.
+  GpuScene(const Scene& scene, const std::vector<Light>& lights);
+
+  struct Draw {
+    const gl::VertexArray* vao;
+    GLsizei indexCount;
+    bool hasTexcoords, hasColours;
+    int material;  // −1: default material
+    glm::mat4 model;
+    bool mirrored;  // negative determinant
+  };
+  const std::vector<Draw>& draws() const { return draws_; }
+  const gl::Texture* texture(int index) const { return &textures_[index]; }
+  const gl::Texture& lightTexture() const { return lightTexture_; }
+  int lightCount() const { return lightCount_; }
+
+ private:
+  struct GpuPrimitive {
+    gl::VertexArray vao;
+    std::vector<gl::Buffer> buffers;
+    GLsizei indexCount = 0;
+    bool hasTexcoords = false, hasColours = false;
+    int material = -1;
+  };
+  std::vector<std::vector<GpuPrimitive>> meshes_;
+  std::vector<gl::Texture> textures_;
+  std::vector<Draw> draws_;
+  gl::Buffer lightBuffer_;
+  gl::Texture lightTexture_;
+  int lightCount_ = 0;
+};
+
+}  // namespace manylight

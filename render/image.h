@@ -1,0 +1,42 @@
+#pragma once
+// Images the renderer produces, and their files: PNG (8-bit, exact sRGB encoding) and
+// EXR (linear float, unclamped), through OpenImageIO.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/error.h"
+
+namespace manylight {
+
+// Thrown when an image cannot be written or read.
+class ImageError : public Error {
+ public:
+  using Error::Error;
+};
+
+// Linear RGBA float pixels, row 0 at the top.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgba;
+  float* pixel(int x, int y) { return &rgba[(std::size_t(y) * width + x) * 4]; }
+  const float* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
+};
+
+// The IEC 61966-2-1 sRGB encoding of a linear value, clamped to [0, 1] and rounded to the
+// nearest 8-bit code (not a 2.2 power).
+std::uint8_t encodeSrgb8(double linear);
+// The inverse: the linear value of an 8-bit sRGB code.
+double decodeSrgb8(std::uint8_t code);
+
+// Writes `image` scaled by 2^exposure to `path`: .png as 8-bit sRGB RGBA, .exr as linear
+// float RGBA. Creates missing parent folders, writes a temporary file beside the target and
+// renames it, so a failure leaves no partial file. Throws ImageError.
+void writeImage(const Image& image, const std::string& path, float exposure = 0.0f);
+
+// Reads an image as float RGBA (8-bit files as their codes / 255, not decoded). Throws
+// ImageError.
+Image readImage(const std::string& path);
+
+}  // namespace manylight

@@ -1,0 +1,55 @@
+#include "render/reference_method.h"
+
+#include <algorithm>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace manylight {
+
+using namespace gl::api;
+
+ReferenceMethod::ReferenceMethod()
+    : program_("fullscreen.vert", "lighting_reference.frag", {}, {"oRadiance"}) {}
+
+int ReferenceMethod::lightsPerPass(int pixels) {
+  return int(std::clamp<long long>(kEvaluationsPerPass / std::max(pixels, 1), 1, 1 << 20));
+}
+
+int ReferenceMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view) const {
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.lightingFramebuffer().id());
+  glViewport(0, 0, gbuffer.width(), gbuffer.height());
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  program_.use();
+  const GBuffer::Target inputs[] = {GBuffer::kPosition, GBuffer::kNormal, GBuffer::kAlbedo,
+                                    GBuffer::kSpecular};
+  const char* names[] = {"uPosition", "uNormal", "uAlbedo", "uSpecular"};
+  for (int i = 0; i < 4; ++i) {
+    glActiveTexture(GL_TEXTURE0 + i);
+    glBindTexture(GL_TEXTURE_2D, gbuffer.target(inputs[i]).id());
+    glUniform1i(program_.uniform(names[i]), i);
+  }
+  glActiveTexture(GL_TEXTURE4);
+  glBindTexture(GL_TEXTURE_BUFFER, scene.lightTexture().id());
+  glUniform1i(program_.uniform("uLights"), 4);
+  glUniform3fv(program_.uniform("uEye"), 1, glm::value_ptr(view.eye));
+  glUniform3fv(program_.uniform("uForward"), 1, glm::value_ptr(view.forward));
+  glUniform1i(program_.uniform("uOrthographic"), view.orthographic ? 1 : 0);
+
+  const int perPass = lightsPerPass(gbuffer.width() * gbuffer.height());
+  int passes = 0;
+  for (int first = 0; first < scene.lightCount(); first += perPass) {
+    glUniform1i(program_.uniform("uFirstLight"), first);
+    glUniform1i(program_.uniform("uLightCount"), std::min(perPass, scene.lightCount() - first));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++passes;
+  }
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+  return passes;
+}
+
+}  // namespace manylight

@@ -1,0 +1,33 @@
+#pragma once
+// One still image of a scene: picks the camera (the scene's, or the thumbnail framing) and
+// the lights (the scene's, or the default rig), then renders. Shared by the CLI and tests.
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+
+namespace manylight {
+
+struct RenderRequest {
+  int width = 640;
+  int height = 480;
+  int camera = -1;  // index into Scene::cameras; −1: the first camera, or framing if none
+  Method method = Method::Reference;
+  glm::vec3 ambient{0.0f};
+};
+
+struct RenderOutcome {
+  Image image;
+  FrameStats frame;
+  bool framed = false;      // no camera: the thumbnail framing of scene/camera.h was used
+  bool defaultRig = false;  // no lights: the default rig of scene/camera.h was used
+  std::size_t lightCount = 0;
+};
+
+// The camera a request resolves to. Throws Error for a camera index the scene lacks.
+Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* framed = nullptr);
+
+// Renders with the current context. Throws Error (bad request) or gl::GlError.
+RenderOutcome renderScene(const Scene& scene, const RenderRequest& request);
+
+}  // namespace manylight

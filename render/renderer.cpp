@@ -1,0 +1,114 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/context.h"
+
+namespace manylight {
+
+using namespace gl::api;
+
+Method parseMethod(const std::string& name) {
+  if (name == "reference") return Method::Reference;
+  throw Error("unknown method '" + name + "', expected reference");
+}
+
+const char* methodName(Method) { return "reference"; }
+
+Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
+                   Method)
+    : scene_(scene),
+      gpu_(scene, lights),
+      gbuffer_(width, height),
+      geometry_("gbuffer.vert", "gbuffer.frag", {},
+                {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"}) {}
+
+void Renderer::geometryPass(const View& view, const FrameSettings& settings) {
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_.geometryFramebuffer().id());
+  glViewport(0, 0, gbuffer_.width(), gbuffer_.height());
+  const float zero[4] = {0, 0, 0, 0};
+  for (int i = 0; i < GBuffer::kTargetCount; ++i) glClearBufferfv(GL_COLOR, i, zero);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_BLEND);
+  glCullFace(GL_BACK);
+
+  geometry_.use();
+  const glm::mat4 viewProjection = view.projection * view.view;
+  glUniformMatrix4fv(geometry_.uniform("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+  glUniform3fv(geometry_.uniform("uAmbient"), 1, glm::value_ptr(settings.ambient));
+  glUniform1i(geometry_.uniform("uBaseColorTexture"), 0);
+  glActiveTexture(GL_TEXTURE0);
+  const Material fallback = defaultMaterial();
+  for (const GpuScene::Draw& d : gpu_.draws()) {
+    const Material& m = d.material >= 0 ? scene_.materials[d.material] : fallback;
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
+    glUniformMatrix4fv(geometry_.uniform("uModel"), 1, GL_FALSE, glm::value_ptr(d.model));
+    glUniformMatrix3fv(geometry_.uniform("uNormalMatrix"), 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    glUniform4fv(geometry_.uniform("uBaseColorFactor"), 1, glm::value_ptr(m.baseColorFactor));
+    glUniform1f(geometry_.uniform("uMetallic"), m.metallic);
+    glUniform1f(geometry_.uniform("uRoughness"), m.roughness);
+    glUniform3fv(geometry_.uniform("uEmissive"), 1, glm::value_ptr(m.emissive));
+    const bool textured = m.baseColorTexture >= 0 && d.hasTexcoords;
+    glUniform1i(geometry_.uniform("uHasTexture"), textured ? 1 : 0);
+    if (textured) glBindTexture(GL_TEXTURE_2D, gpu_.texture(m.baseColorTexture)->id());
+    glUniform1i(geometry_.uniform("uDoubleSided"), m.doubleSided ? 1 : 0);
+    glUniform1i(geometry_.uniform("uMirrored"), d.mirrored ? 1 : 0);
+    if (m.doubleSided) {
+      glDisable(GL_CULL_FACE);
+    } else {
+      glEnable(GL_CULL_FACE);
+    }
+    glFrontFace(d.mirrored ? GL_CW : GL_CCW);
+    // Absent attributes read these constants.
+    if (!d.hasTexcoords) glVertexAttrib4f(2, 0.0f, 0.0f, 0.0f, 1.0f);
+    if (!d.hasColours) glVertexAttrib4f(3, 1.0f, 1.0f, 1.0f, 1.0f);
+    glBindVertexArray(d.vao->id());
+    glDrawElements(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+  glFrontFace(GL_CCW);
+  glDisable(GL_CULL_FACE);
+}
+
+Image Renderer::render(const View& view, const FrameSettings& settings, FrameStats* stats) {
+  glFinish();
+  const auto start = std::chrono::steady_clock::now();
+  geometryPass(view, settings);
+  glBindVertexArray(emptyVao_.id());
+  const int passes = reference_.light(gpu_, gbuffer_, view);
+  glBindVertexArray(0);
+  glFinish();
+  const auto end = std::chrono::steady_clock::now();
+
+  Image image;
+  image.width = gbuffer_.width();
+  image.height = gbuffer_.height();
+  std::vector<float> rows(std::size_t(image.width) * image.height * 4);
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_.lightingFramebuffer().id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rows.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR) {
+    throw gl::GlError("OpenGL error 0x" + std::to_string(error) + " while rendering");
+  }
+  // GL's rows run bottom-up; images run top-down.
+  image.rgba.resize(rows.size());
+  const std::size_t stride = std::size_t(image.width) * 4;
+  for (int y = 0; y < image.height; ++y) {
+    std::copy_n(&rows[std::size_t(image.height - 1 - y) * stride], stride, &image.rgba[y * stride]);
+  }
+  if (stats) {
+    stats->renderMs = std::chrono::duration<double, std::milli>(end - start).count();
+    stats->lightingPasses = passes;
+  }
+  return image;
+}
+
+}  // namespace manylight

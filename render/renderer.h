@@ -1,0 +1,52 @@
+#pragma once
+// The deferred renderer: a G-buffer pass, then the chosen method's lighting passes into a
+// float radiance target, read back as a linear image.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/gbuffer.h"
+#include "render/gpu_scene.h"
+#include "render/image.h"
+#include "render/reference_method.h"
+#include "scene/camera.h"
+
+namespace manylight {
+
+enum class Method { Reference };
+
+// "reference" → Method; throws Error naming the choices for anything else.
+Method parseMethod(const std::string& name);
+const char* methodName(Method m);
+
+struct FrameSettings {
+  glm::vec3 ambient{0.0f};
+};
+
+struct FrameStats {
+  double renderMs = 0.0;  // G-buffer + lighting passes, bracketed by glFinish
+  int lightingPasses = 0;
+};
+
+class Renderer {
+ public:
+  // Uploads the scene and compiles the programs; needs a current context. Throws
+  // gl::GlError.
+  Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
+           Method method);
+
+  // Renders one frame seen through `view`. Throws gl::GlError on a driver error.
+  Image render(const View& view, const FrameSettings& settings, FrameStats* stats = nullptr);
+
+ private:
+  void geometryPass(const View& view, const FrameSettings& settings);
+
+  const Scene& scene_;
+  GpuScene gpu_;
+  GBuffer gbuffer_;
+  gl::Program geometry_;
+  ReferenceMethod reference_;
+  gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
+};
+
+}  // namespace manylight

@@ -1,0 +1,317 @@
+#include "scene/gltf_convert.h"
+
+#include <cmath>
+
+#include <tiny_gltf.h>
+
+#include "scene/error.h"
+#include "scene/gltf_accessors.h"
+
+namespace manylight::gltf {
+namespace {
+
+constexpr double kHalfPi = 1.57079632679489661923;
+
+std::string str(int i) { return std::to_string(i); }
+
+template <typename T>
+void checkIndex(int index, const std::vector<T>& v, const std::string& what) {
+  if (index < 0 || std::size_t(index) >= v.size()) {
+    throw SceneError(what + " " + str(index) + " does not exist");
+  }
+}
+
+// Triangle list indices for a primitive mode; empty for points and lines.
+std::vector<std::uint32_t> triangulate(int mode, std::vector<std::uint32_t> idx) {
+  std::vector<std::uint32_t> out;
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    idx.resize(idx.size() / 3 * 3);
+    return idx;
+  }
+  if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (std::size_t i = 2; i < idx.size(); ++i) {
+      const bool even = (i % 2) == 0;
+      out.insert(out.end(), {idx[i - 2], even ? idx[i - 1] : idx[i], even ? idx[i] : idx[i - 1]});
+    }
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    for (std::size_t i = 2; i < idx.size(); ++i) out.insert(out.end(), {idx[i - 1], idx[i], idx[0]});
+  }
+  return out;
+}
+
+// Gives every triangle its own three vertices with the face normal: the normals glTF
+// prescribes ("flat normals") when a primitive has none.
+void makeFlatNormals(Primitive& p) {
+  Primitive flat;
+  flat.material = p.material;
+  for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+    const std::uint32_t a = p.indices[t], b = p.indices[t + 1], c = p.indices[t + 2];
+    glm::vec3 n = glm::cross(p.positions[b] - p.positions[a], p.positions[c] - p.positions[a]);
+    const float len = glm::length(n);
+    n = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+    for (std::uint32_t v : {a, b, c}) {
+      flat.indices.push_back(std::uint32_t(flat.positions.size()));
+      flat.positions.push_back(p.positions[v]);
+      flat.normals.push_back(n);
+      if (!p.texcoords.empty()) flat.texcoords.push_back(p.texcoords[v]);
+      if (!p.colours.empty()) flat.colours.push_back(p.colours[v]);
+    }
+  }
+  p = std::move(flat);
+}
+
+template <typename V>
+std::vector<V> toVectors(const std::vector<float>& f, int n, bool requireFinite,
+                         const std::string& what) {
+  std::vector<V> out(f.size() / n);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    for (int c = 0; c < n; ++c) {
+      const float x = f[i * n + c];
+      if (requireFinite && !std::isfinite(x)) {
+        throw SceneError(what + ": element " + std::to_string(i) + " is not finite");
+      }
+      out[i][c] = x;
+    }
+  }
+  return out;
+}
+
+glm::vec3 vec3Of(const std::vector<double>& v, glm::vec3 fallback) {
+  return v.size() >= 3 ? glm::vec3(v[0], v[1], v[2]) : fallback;
+}
+
+}  // namespace
+
+glm::mat4 withoutScale(const glm::mat4& world) {
+  glm::mat4 m(1.0f);
+  for (int c = 0; c < 3; ++c) {
+    const glm::vec3 axis(world[c]);
+    const float len = glm::length(axis);
+    m[c] = glm::vec4(len > 0.0f ? axis / len : glm::vec3(0.0f), 0.0f);
+  }
+  m[3] = world[3];
+  return m;
+}
+
+Converter::Converter(const tinygltf::Model& model, Scene& scene)
+    : model_(model),
+      scene_(scene),
+      meshes_(model.meshes.size(), -1),
+      materials_(model.materials.size(), -1),
+      textures_(model.textures.size(), -1) {}
+
+int Converter::mesh(int index) {
+  checkIndex(index, model_.meshes, "mesh");
+  if (meshes_[index] >= 0) return meshes_[index];
+  Mesh mesh;
+  for (std::size_t p = 0; p < model_.meshes[index].primitives.size(); ++p) {
+    Primitive prim = primitive(index, int(p));
+    if (!prim.indices.empty()) mesh.primitives.push_back(std::move(prim));
+  }
+  meshes_[index] = int(scene_.meshes.size());
+  scene_.meshes.push_back(std::move(mesh));
+  return meshes_[index];
+}
+
+Primitive Converter::primitive(int meshIndex, int primIndex) {
+  const tinygltf::Primitive& src = model_.meshes[meshIndex].primitives[primIndex];
+  const std::string where = "mesh " + str(meshIndex) + " primitive " + str(primIndex);
+  Primitive p;
+  const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    scene_.warnings.push_back(where + ": points and lines (mode " + str(mode) + ") skipped");
+    return p;
+  }
+  auto attr = [&](const char* name) {
+    auto it = src.attributes.find(name);
+    return it == src.attributes.end() ? -1 : it->second;
+  };
+  if (attr("POSITION") < 0) {
+    scene_.warnings.push_back(where + ": no POSITION attribute; skipped");
+    return p;
+  }
+  p.positions = toVectors<glm::vec3>(readFloats(model_, attr("POSITION"), 3, "POSITION"), 3, true,
+                                     where + " POSITION");
+  const std::size_t count = p.positions.size();
+  auto sameCount = [&](std::size_t n, const char* what) {
+    if (n != count) {
+      throw SceneError(where + ": " + what + " has " + std::to_string(n) + " elements, POSITION " +
+                       std::to_string(count));
+    }
+  };
+  if (attr("NORMAL") >= 0) {
+    p.normals = toVectors<glm::vec3>(readFloats(model_, attr("NORMAL"), 3, "NORMAL"), 3, true,
+                                     where + " NORMAL");
+    sameCount(p.normals.size(), "NORMAL");
+  }
+  p.material = src.material >= 0 ? material(src.material) : -1;
+  const int texCoordSet =
+      p.material >= 0 && src.material < int(model_.materials.size())
+          ? model_.materials[src.material].pbrMetallicRoughness.baseColorTexture.texCoord
+          : 0;
+  const std::string uvName = "TEXCOORD_" + str(texCoordSet);
+  if (attr(uvName.c_str()) >= 0) {
+    p.texcoords = toVectors<glm::vec2>(readFloats(model_, attr(uvName.c_str()), 2, uvName), 2,
+                                       false, where + " " + uvName);
+    sameCount(p.texcoords.size(), uvName.c_str());
+  }
+  if (attr("COLOR_0") >= 0) {
+    const int acc = attr("COLOR_0");
+    checkIndex(acc, model_.accessors, "accessor");
+    const int n = model_.accessors[acc].type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+    const std::vector<float> f = readFloats(model_, acc, n, "COLOR_0");
+    p.colours.resize(f.size() / n);
+    for (std::size_t i = 0; i < p.colours.size(); ++i) {
+      p.colours[i] = glm::vec4(f[i * n], f[i * n + 1], f[i * n + 2], n == 4 ? f[i * n + 3] : 1.0f);
+    }
+    sameCount(p.colours.size(), "COLOR_0");
+  }
+  std::vector<std::uint32_t> idx;
+  if (src.indices >= 0) {
+    idx = readIndices(model_, src.indices);
+    for (std::uint32_t i : idx) {
+      if (i >= count) {
+        throw SceneError(where + ": index " + std::to_string(i) + " is out of range (" +
+                         std::to_string(count) + " vertices)");
+      }
+    }
+  } else {
+    idx.resize(count);
+    for (std::size_t i = 0; i < count; ++i) idx[i] = std::uint32_t(i);
+  }
+  p.indices = triangulate(mode, std::move(idx));
+  if (p.normals.empty()) makeFlatNormals(p);
+  return p;
+}
+
+int Converter::material(int index) {
+  checkIndex(index, model_.materials, "material");
+  if (materials_[index] >= 0) return materials_[index];
+  const tinygltf::Material& src = model_.materials[index];
+  const auto& pbr = src.pbrMetallicRoughness;
+  Material m;
+  if (pbr.baseColorFactor.size() == 4) {
+    m.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1],
+                                  pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
+  }
+  m.metallic = float(pbr.metallicFactor);
+  m.roughness = float(pbr.roughnessFactor);
+  m.emissive = vec3Of(src.emissiveFactor, glm::vec3(0.0f));
+  m.doubleSided = src.doubleSided;
+  if (pbr.baseColorTexture.index >= 0) {
+    m.baseColorTexture = texture(pbr.baseColorTexture.index);
+    if (m.baseColorTexture < 0) {
+      scene_.warnings.push_back("material " + str(index) + ": base colour texture " +
+                                str(pbr.baseColorTexture.index) + " has no image; ignored");
+    }
+  }
+  materials_[index] = int(scene_.materials.size());
+  scene_.materials.push_back(m);
+  return materials_[index];
+}
+
+int Converter::texture(int index) {
+  if (index < 0 || std::size_t(index) >= model_.textures.size()) return -1;
+  if (textures_[index] >= 0) return textures_[index];
+  const tinygltf::Texture& src = model_.textures[index];
+  if (src.source < 0 || std::size_t(src.source) >= model_.images.size()) return -1;
+  const tinygltf::Image& img = model_.images[src.source];
+  if (img.image.empty() || img.width <= 0 || img.height <= 0 || img.component != 4 ||
+      img.bits != 8) {
+    return -1;
+  }
+  Texture t;
+  t.width = img.width;
+  t.height = img.height;
+  t.rgba = img.image;
+  if (src.sampler >= 0 && std::size_t(src.sampler) < model_.samplers.size()) {
+    const tinygltf::Sampler& s = model_.samplers[src.sampler];
+    t.repeatS = s.wrapS != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    t.repeatT = s.wrapT != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    t.mirrorS = s.wrapS == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
+    t.mirrorT = s.wrapT == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
+    t.linearMag = s.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST;
+    t.linearMin = s.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+                  s.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST &&
+                  s.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+    t.mipmaps = s.minFilter < 0 || s.minFilter >= TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST;
+  }
+  textures_[index] = int(scene_.textures.size());
+  scene_.textures.push_back(std::move(t));
+  return textures_[index];
+}
+
+Camera Converter::camera(int index) const {
+  const tinygltf::Camera& src = model_.cameras[index];
+  Camera c;
+  const std::string where = "camera " + str(index);
+  if (src.type == "orthographic") {
+    c.orthographic = true;
+    c.xmag = float(src.orthographic.xmag);
+    c.ymag = float(src.orthographic.ymag);
+    c.znear = float(src.orthographic.znear);
+    c.zfar = float(src.orthographic.zfar);
+    if (!(c.xmag != 0.0f && c.ymag != 0.0f && c.zfar > c.znear && c.znear >= 0.0f)) {
+      throw SceneError(where + ": orthographic xmag, ymag must be non-zero and zfar > znear >= 0");
+    }
+  } else if (src.type == "perspective") {
+    c.yfov = float(src.perspective.yfov);
+    c.znear = float(src.perspective.znear);
+    c.zfar = float(src.perspective.zfar);
+    if (!(c.yfov > 0.0f && c.yfov < 3.14159f && c.znear > 0.0f &&
+          (c.zfar == 0.0f || c.zfar > c.znear))) {
+      throw SceneError(where + ": perspective yfov must be in (0, π), znear > 0, zfar > znear");
+    }
+  } else {
+    throw SceneError(where + ": unknown type '" + src.type + "'");
+  }
+  return c;
+}
+
+Light Converter::light(int index, const glm::mat4& world) const {
+  checkIndex(index, model_.lights, "light");
+  const tinygltf::Light& src = model_.lights[index];
+  const std::string where = "light " + str(index);
+  Light l;
+  if (src.type == "point") {
+    l.type = LightType::Point;
+  } else if (src.type == "spot") {
+    l.type = LightType::Spot;
+  } else if (src.type == "directional") {
+    l.type = LightType::Directional;
+  } else {
+    throw SceneError(where + ": unknown type '" + src.type + "'");
+  }
+  if (!src.color.empty() && src.color.size() != 3) {
+    throw SceneError(where + ": color must have 3 components, got " + str(int(src.color.size())));
+  }
+  l.colour = vec3Of(src.color, glm::vec3(1.0f));
+  l.intensity = float(src.intensity);
+  l.range = float(src.range);
+  if (!std::isfinite(l.intensity) || l.intensity < 0.0f || !(l.colour == l.colour) ||
+      glm::any(glm::lessThan(l.colour, glm::vec3(0.0f)))) {
+    throw SceneError(where + ": colour and intensity must be finite and not negative");
+  }
+  if (!(l.range >= 0.0f) || std::isinf(l.range)) {
+    throw SceneError(where + ": range must be a positive number");
+  }
+  if (l.type == LightType::Spot) {
+    l.innerConeAngle = float(src.spot.innerConeAngle);
+    l.outerConeAngle = float(src.spot.outerConeAngle);
+    if (!(src.spot.innerConeAngle >= 0.0 && src.spot.innerConeAngle < src.spot.outerConeAngle &&
+          src.spot.outerConeAngle <= kHalfPi)) {
+      throw SceneError(where + ": spot cone angles must satisfy 0 <= inner < outer <= pi/2");
+    }
+  }
+  l.position = glm::vec3(world[3]);
+  const glm::vec3 dir = glm::vec3(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+  const float len = glm::length(dir);
+  if (!(len > 0.0f) || !std::isfinite(len)) {
+    throw SceneError(where + ": the node's transform collapses the light direction");
+  }
+  l.direction = dir / len;
+  return l;
+}
+
+}  // namespace manylight::gltf

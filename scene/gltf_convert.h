@@ -1,0 +1,38 @@
+#pragma once
+// Converts glTF objects (meshes, materials, textures, lights, cameras) into scene/ types,
+// each glTF object once, on first use. Internal to scene/.
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace tinygltf {
+class Model;
+}
+
+namespace manylight::gltf {
+
+// The rotation and translation of `world`, scale removed (cameras).
+glm::mat4 withoutScale(const glm::mat4& world);
+
+class Converter {
+ public:
+  Converter(const tinygltf::Model& model, Scene& scene);
+
+  // Index into Scene::meshes of glTF mesh `index`. Throws SceneError.
+  int mesh(int index);
+  // glTF camera `index` with an identity placement.
+  Camera camera(int index) const;
+  // glTF light `index` placed by a node's world transform. Throws SceneError.
+  Light light(int index, const glm::mat4& world) const;
+
+ private:
+  int material(int index);
+  int texture(int index);
+  Primitive primitive(int meshIndex, int primIndex);
+
+  const tinygltf::Model& model_;
+  Scene& scene_;
+  std::vector<int> meshes_, materials_, textures_;  // glTF index → scene index, −1 if not yet
+};
+
+}  // namespace manylight::gltf

@@ -1,0 +1,238 @@
+#include "scene/gltf_loader.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+
+#include <tiny_gltf.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "scene/error.h"
+#include "scene/gltf_accessors.h"
+#include "scene/gltf_convert.h"
+#include "scene/image_decode.h"
+
+namespace manylight {
+namespace {
+
+// Extensions whose absence would change what we render; we implement these fully.
+const std::set<std::string> kSupportedRequired = {"KHR_lights_punctual", "KHR_mesh_quantization"};
+
+std::string oneLine(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
+  for (char& c : s) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return s;
+}
+
+bool decodeImageForTinygltf(tinygltf::Image* image, const int index, std::string* err,
+                            std::string*, int, int, const unsigned char* bytes, int size, void*) {
+  try {
+    DecodedImage d =
+        decodeImage(bytes, size_t(std::max(size, 0)), "image " + std::to_string(index));
+    image->width = d.width;
+    image->height = d.height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image = std::move(d.rgba);
+    return true;
+  } catch (const SceneError& e) {
+    if (err) *err += e.what();
+    return false;
+  }
+}
+
+glm::mat4 localTransform(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    glm::dmat4 m;
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = node.matrix[i];
+    return glm::mat4(m);
+  }
+  glm::dmat4 m(1.0);
+  if (node.translation.size() == 3) {
+    m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+  }
+  if (node.rotation.size() == 4) {
+    const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+    m *= glm::mat4_cast(glm::normalize(q));
+  }
+  if (node.scale.size() == 3) {
+    m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+  }
+  return glm::mat4(m);
+}
+
+int nodeLight(const tinygltf::Node& node) {
+  auto it = node.extensions.find("KHR_lights_punctual");
+  if (it == node.extensions.end() || !it->second.Has("light")) return -1;
+  const tinygltf::Value& v = it->second.Get("light");
+  if (!v.IsNumber()) throw SceneError("node '" + node.name + "': KHR_lights_punctual.light is not an index");
+  return v.IsInt() ? v.Get<int>() : int(v.Get<double>());
+}
+
+void checkVersion(const tinygltf::Model& model) {
+  auto major = [](const std::string& v) { return std::atoi(v.c_str()); };
+  auto minor = [](const std::string& v) {
+    const auto dot = v.find('.');
+    return dot == std::string::npos ? 0 : std::atoi(v.c_str() + dot + 1);
+  };
+  if (major(model.asset.version) != 2) {
+    throw SceneError("asset.version '" + model.asset.version + "' is not supported, expected 2.x");
+  }
+  const std::string& mv = model.asset.minVersion;
+  if (!mv.empty() && (major(mv) != 2 || minor(mv) > 0)) {
+    throw SceneError("asset.minVersion " + mv + " is not supported, expected 2.0");
+  }
+  for (const std::string& ext : model.extensionsRequired) {
+    if (!kSupportedRequired.count(ext)) {
+      throw SceneError("required extension " + ext + " is not supported");
+    }
+  }
+}
+
+// Walks the node hierarchy of the default scene, placing meshes, lights and cameras.
+class SceneWalker {
+ public:
+  SceneWalker(const tinygltf::Model& model, Scene& scene, gltf::Converter& convert,
+              const LoadOptions& options)
+      : model_(model), scene_(scene), convert_(convert), options_(options) {}
+
+  void walk() {
+    std::vector<int> roots;
+    if (!model_.scenes.empty()) {
+      int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+      if (std::size_t(s) >= model_.scenes.size()) {
+        throw SceneError("scene " + std::to_string(s) + " does not exist");
+      }
+      roots = model_.scenes[s].nodes;
+    } else {
+      // No scenes: show every node that is nobody's child.
+      std::vector<bool> isChild(model_.nodes.size(), false);
+      for (const tinygltf::Node& n : model_.nodes) {
+        for (int c : n.children) {
+          if (c >= 0 && std::size_t(c) < isChild.size()) isChild[c] = true;
+        }
+      }
+      for (std::size_t i = 0; i < isChild.size(); ++i) {
+        if (!isChild[i]) roots.push_back(int(i));
+      }
+    }
+    cameraPlaced_.assign(model_.cameras.size(), false);
+    scene_.cameras.assign(model_.cameras.size(), Camera{});
+    for (std::size_t i = 0; i < model_.cameras.size(); ++i) {
+      scene_.cameras[i] = convert_.camera(int(i));
+    }
+    // Iterative depth-first walk; a node met twice means a cycle or multiple parents.
+    std::vector<bool> visited(model_.nodes.size(), false);
+    struct Item {
+      int node;
+      glm::mat4 parent;
+    };
+    std::vector<Item> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
+    while (!stack.empty()) {
+      const Item item = stack.back();
+      stack.pop_back();
+      if (item.node < 0 || std::size_t(item.node) >= model_.nodes.size()) {
+        throw SceneError("node " + std::to_string(item.node) + " does not exist");
+      }
+      if (visited[item.node]) {
+        throw SceneError("node " + std::to_string(item.node) +
+                         " is reached twice (a cycle or several parents)");
+      }
+      visited[item.node] = true;
+      const tinygltf::Node& node = model_.nodes[item.node];
+      const glm::mat4 world = item.parent * localTransform(node);
+      place(item.node, node, world);
+      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) {
+        stack.push_back({*c, world});
+      }
+    }
+    for (std::size_t i = 0; i < cameraPlaced_.size(); ++i) {
+      if (!cameraPlaced_[i]) {
+        scene_.warnings.push_back("camera " + std::to_string(i) +
+                                  " is used by no node of the scene; placed at the origin");
+      }
+    }
+  }
+
+ private:
+  void place(int index, const tinygltf::Node& node, const glm::mat4& world) {
+    const std::string where = "node " + std::to_string(index);
+    for (int i = 0; i < 16; ++i) {
+      if (!std::isfinite(glm::value_ptr(world)[i])) {
+        throw SceneError(where + ": transform is not finite");
+      }
+    }
+    if (node.mesh >= 0) {
+      scene_.instances.push_back({convert_.mesh(node.mesh), world});
+    } else if (node.mesh < -1) {
+      throw SceneError(where + ": mesh " + std::to_string(node.mesh) + " does not exist");
+    }
+    if (node.camera >= 0) {
+      if (std::size_t(node.camera) >= model_.cameras.size()) {
+        throw SceneError(where + ": camera " + std::to_string(node.camera) + " does not exist");
+      }
+      if (!cameraPlaced_[node.camera]) {
+        cameraPlaced_[node.camera] = true;
+        scene_.cameras[node.camera].world = gltf::withoutScale(world);
+      }
+    }
+    const int light = nodeLight(node);
+    if (light >= 0) {
+      if (scene_.lights.size() >= options_.lightBudget) {
+        throw SceneError("more than " + std::to_string(options_.lightBudget) +
+                         " lights exceed the light budget (--light-budget)");
+      }
+      scene_.lights.push_back(convert_.light(light, world));
+    } else if (light < -1) {
+      throw SceneError(where + ": light " + std::to_string(light) + " does not exist");
+    }
+  }
+
+  const tinygltf::Model& model_;
+  Scene& scene_;
+  gltf::Converter& convert_;
+  const LoadOptions& options_;
+  std::vector<bool> cameraPlaced_;
+};
+
+bool isBinaryGltf(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  char magic[4] = {};
+  f.read(magic, 4);
+  return f.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path, const LoadOptions& options) {
+  Scene scene;
+  scene.name = path;
+  try {
+    {
+      std::ifstream probe(path, std::ios::binary);
+      if (!probe) throw SceneError(std::string("cannot open: ") + std::strerror(errno));
+    }
+    tinygltf::TinyGLTF parser;
+    parser.SetImageLoader(decodeImageForTinygltf, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    const bool ok = isBinaryGltf(path) ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
+                                       : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+    if (!ok) throw SceneError(oneLine(err.empty() ? "not a valid glTF file" : err));
+    checkVersion(model);
+    gltf::Converter convert(model, scene);
+    SceneWalker(model, scene, convert, options).walk();
+  } catch (const SceneError& e) {
+    throw SceneError(path + ": " + e.what());
+  }
+  return scene;
+}
+
+}  // namespace manylight

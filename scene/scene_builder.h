@@ -1,0 +1,65 @@
+#pragma once
+// Writes procedural glTF scenes: the bundled sample, and the generated scenes the tests and
+// benchmarks render (so they go through the same loader as users' files).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace manylight {
+
+struct BuilderMaterial {
+  glm::vec4 baseColor{1.0f};
+  float metallic = 0.0f;
+  float roughness = 1.0f;
+  glm::vec3 emissive{0.0f};
+  bool doubleSided = false;
+  // Optional base-colour texture: sRGB RGBA8, row 0 at the top; sampled with LINEAR
+  // filtering, no mipmaps, REPEAT wrapping.
+  int textureWidth = 0, textureHeight = 0;
+  std::vector<std::uint8_t> textureRgba;
+};
+
+class GltfBuilder {
+ public:
+  GltfBuilder();
+  ~GltfBuilder();
+  GltfBuilder(const GltfBuilder&) = delete;
+  GltfBuilder& operator=(const GltfBuilder&) = delete;
+
+  int addMaterial(const BuilderMaterial& m);
+  // Unit shapes placed by translation and scale: a box [-0.5, 0.5]³, a sphere of radius 0.5,
+  // a plane [-0.5, 0.5]² in XZ facing +Y with UVs over [0, 1]². Return the node index.
+  int addBox(glm::vec3 centre, glm::vec3 size, int material, glm::vec4 rotation = {0, 0, 0, 1});
+  int addSphere(glm::vec3 centre, float diameter, int material, int segments = 24);
+  int addPlane(glm::vec3 centre, glm::vec2 size, int material);
+  void addLight(const Light& light);
+  void addPerspectiveCamera(glm::vec3 eye, glm::vec3 target, float yfovRadians);
+  void addOrthographicCamera(glm::vec3 eye, glm::vec3 target, float xmag, float ymag);
+
+  // Writes a .gltf with the buffer embedded as a data URI, or a .glb (by extension).
+  // Throws SceneError when the file cannot be written.
+  void write(const std::string& path) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The scene most tests and benchmarks render: a floor, a back wall, a box, a sphere and a
+// textured panel, lit by `lightCount` lights from a fixed seed. `mix` chooses point, spot and
+// directional in turn; otherwise all are point lights. `withRange` gives every other
+// point/spot light a range.
+struct RoomOptions {
+  int lightCount = 8;
+  std::uint32_t seed = 1;
+  bool mix = true;
+  bool withRange = true;
+  bool textured = true;
+  bool specular = false;
+};
+void writeRoomScene(const std::string& path, const RoomOptions& options);
+
+}  // namespace manylight
