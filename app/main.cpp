@@ -58,6 +58,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.ambient = parseRgb(a.ambient);
   request.method = parseMethod(a.method);
   const gl::Backend backend = gl::parseBackend(a.backend);
+  checkOutputPath(a.output);
 
   const auto loadStart = Clock::now();
   LoadOptions options;
@@ -79,7 +80,14 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
     std::cerr << "manylight: using " << context->backend() << ", " << context->renderer() << ", "
               << context->version() << "\n";
   }
-  RenderOutcome out = renderScene(scene, request);
+  RenderOutcome out;
+  try {
+    out = renderScene(scene, request);
+  } catch (const gl::GlError&) {
+    throw;
+  } catch (const Error& e) {
+    throw Error(a.scene + ": " + e.what());
+  }
   if (out.framed && a.verbose) std::cerr << "manylight: " << a.scene << ": no camera; framing the bounds\n";
   if (out.defaultRig) {
     std::cerr << "manylight: " << a.scene << ": no lights; using the default three-light rig\n";

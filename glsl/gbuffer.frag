@@ -13,7 +13,7 @@ uniform vec3 uEmissive;
 uniform bool uHasTexture;
 uniform bool uDoubleSided;
 uniform bool uMirrored;  // negative determinant: the winding, and so gl_FrontFacing, flips
-uniform sampler2D uBaseColorTexture;  // GL_SRGB8_ALPHA8: sampled values are linear
+uniform sampler2D uBaseColorTexture;  // linear RGBA (decoded from sRGB at upload)
 uniform vec3 uAmbient;
 
 out vec4 gPosition;  // xyz world position, w Phong exponent

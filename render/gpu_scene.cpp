@@ -1,8 +1,11 @@
 #include "render/gpu_scene.h"
 
+#include <array>
+
 #include "bake/light_pack.h"
 #include "bake/light_texture_layout.h"
 #include "gl/context.h"
+#include "render/image.h"
 
 namespace manylight {
 
@@ -23,9 +26,20 @@ gl::Buffer uploadAttribute(const std::vector<T>& data, GLuint location, GLint co
 gl::Texture uploadTexture(const Texture& t) {
   gl::Texture tex;
   glBindTexture(GL_TEXTURE_2D, tex.id());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, t.width, t.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-               t.rgba.data());
+  // Decoded from sRGB on the CPU with the exact curve (drivers' sRGB samplers approximate it:
+  // llvmpipe is off by up to 1% in dark codes), stored as half floats (relative error
+  // <= 2^-11), so filtering and mipmaps work on linear values.
+  static const std::array<float, 256> kLinear = [] {
+    std::array<float, 256> table{};
+    for (int i = 0; i < 256; ++i) table[i] = float(decodeSrgb8(std::uint8_t(i)));
+    return table;
+  }();
+  std::vector<float> linear(t.rgba.size());
+  for (std::size_t i = 0; i < t.rgba.size(); ++i) {
+    linear[i] = (i % 4 == 3) ? t.rgba[i] / 255.0f : kLinear[t.rgba[i]];
+  }
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, t.width, t.height, 0, GL_RGBA, GL_FLOAT, linear.data());
   auto wrap = [](bool repeat, bool mirror) {
     return GLint(mirror ? GL_MIRRORED_REPEAT : repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
   };

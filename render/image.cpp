@@ -24,12 +24,19 @@ double decodeSrgb8(std::uint8_t code) {
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
 
+void checkOutputPath(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  if (ext != ".png" && ext != ".PNG" && ext != ".exr" && ext != ".EXR") {
+    throw ImageError(path + ": unsupported output format, expected .png or .exr");
+  }
+}
+
 void writeImage(const Image& image, const std::string& path, float exposure) {
   const fs::path target(path);
   const std::string ext = target.extension().string();
+  checkOutputPath(path);
   const bool png = ext == ".png" || ext == ".PNG";
-  const bool exr = ext == ".exr" || ext == ".EXR";
-  if (!png && !exr) throw ImageError(path + ": unsupported output format, expected .png or .exr");
+  const bool exr = !png;
   const fs::path tmp = prepareTemporaryFor(target);
   const double scale = std::exp2(double(exposure));
   const std::size_t n = std::size_t(image.width) * image.height;
@@ -41,6 +48,8 @@ void writeImage(const Image& image, const std::string& path, float exposure) {
       OIIO::ImageSpec spec(image.width, image.height, 4, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
       spec.attribute("oiio:ColorSpace", png ? "sRGB" : "Linear");
       if (exr) spec.attribute("compression", "zip");
+      // No capture date: reruns must produce bit-identical files.
+      spec.attribute("DateTime", "");
       if (out->open(tmp.string(), spec)) {
         if (png) {
           std::vector<std::uint8_t> codes(n * 4);

@@ -35,6 +35,9 @@ double decodeSrgb8(std::uint8_t code);
 // renames it, so a failure leaves no partial file. Throws ImageError.
 void writeImage(const Image& image, const std::string& path, float exposure = 0.0f);
 
+// Throws ImageError unless `path` names a format writeImage writes (.png, .exr).
+void checkOutputPath(const std::string& path);
+
 // Reads an image as float RGBA (8-bit files as their codes / 255, not decoded). Throws
 // ImageError.
 Image readImage(const std::string& path);

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <set>
 
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -75,20 +76,50 @@ int nodeLight(const tinygltf::Node& node) {
   return v.IsInt() ? v.Get<int>() : int(v.Get<double>());
 }
 
+void checkVersion(const std::string& version, const std::string& minVersion,
+                  const std::vector<std::string>& required);
+
+// Reads asset.version, asset.minVersion and extensionsRequired from a .gltf's JSON before
+// tinygltf parses the rest, so a file that needs something we lack (Draco, a newer version)
+// is refused for that reason rather than for a symptom of it.
+void precheckJson(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  const nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return;  // tinygltf reports the syntax error
+  auto str = [](const nlohmann::json& o, const char* key) {
+    const auto it = o.find(key);
+    return it != o.end() && it->is_string() ? it->get<std::string>() : std::string();
+  };
+  const auto asset = j.find("asset");
+  if (asset == j.end() || !asset->is_object()) return;
+  std::vector<std::string> required;
+  const auto req = j.find("extensionsRequired");
+  if (req != j.end() && req->is_array()) {
+    for (const auto& e : *req) {
+      if (e.is_string()) required.push_back(e.get<std::string>());
+    }
+  }
+  checkVersion(str(*asset, "version"), str(*asset, "minVersion"), required);
+}
+
 void checkVersion(const tinygltf::Model& model) {
+  checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
+}
+
+void checkVersion(const std::string& version, const std::string& mv,
+                  const std::vector<std::string>& required) {
   auto major = [](const std::string& v) { return std::atoi(v.c_str()); };
   auto minor = [](const std::string& v) {
     const auto dot = v.find('.');
     return dot == std::string::npos ? 0 : std::atoi(v.c_str() + dot + 1);
   };
-  if (major(model.asset.version) != 2) {
-    throw SceneError("asset.version '" + model.asset.version + "' is not supported, expected 2.x");
+  if (major(version) != 2) {
+    throw SceneError("asset.version '" + version + "' is not supported, expected 2.x");
   }
-  const std::string& mv = model.asset.minVersion;
   if (!mv.empty() && (major(mv) != 2 || minor(mv) > 0)) {
     throw SceneError("asset.minVersion " + mv + " is not supported, expected 2.0");
   }
-  for (const std::string& ext : model.extensionsRequired) {
+  for (const std::string& ext : required) {
     if (!kSupportedRequired.count(ext)) {
       throw SceneError("required extension " + ext + " is not supported");
     }
@@ -219,12 +250,21 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
       std::ifstream probe(path, std::ios::binary);
       if (!probe) throw SceneError(std::string("cannot open: ") + std::strerror(errno));
     }
+    const bool binary = isBinaryGltf(path);
+    if (!binary) precheckJson(path);
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(decodeImageForTinygltf, nullptr);
     tinygltf::Model model;
     std::string err, warn;
-    const bool ok = isBinaryGltf(path) ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
-                                       : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+    bool ok = false;
+    try {
+      ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
+                  : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+    } catch (const std::bad_alloc&) {
+      throw SceneError("out of memory while parsing: a size in the file is too large");
+    } catch (const std::exception& e) {
+      throw SceneError(oneLine(e.what()));
+    }
     if (!ok) throw SceneError(oneLine(err.empty() ? "not a valid glTF file" : err));
     checkVersion(model);
     gltf::Converter convert(model, scene);

@@ -1,0 +1,203 @@
+// The manylight program as a user runs it: outputs, stats, exit codes and exact messages.
+#include <sys/wait.h>
+
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "render/image.h"
+#include "render/render_job.h"
+#include "scene/gltf_loader.h"
+#include "tests/oracle.h"
+#include "tests/test_support.h"
+
+namespace manylight::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ProcessResult {
+  int exitCode;
+  std::string err;
+};
+
+ProcessResult manylight(const std::string& args) {
+  const fs::path errFile = testFolder() / "stderr.txt";
+  const std::string cmd = std::string(MANYLIGHT_BIN) + " " + args + " 2>" + errFile.string() + " >/dev/null";
+  const int status = std::system(cmd.c_str());
+  std::ifstream f(errFile);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
+}
+
+std::string readFile(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string writeText(const std::string& name, const std::string& text) {
+  const fs::path p = testFolder() / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+TEST(Cli, RendersPngAndExrWithStats) {
+  RoomOptions o;
+  o.lightCount = 16;
+  const std::string scene = roomScene(o);
+  const fs::path dir = testFolder();
+  const ProcessResult r = manylight("render " + scene + " -o " + (dir / "a.png").string() + " --size 80x60 --stats " +
+                          (dir / "stats.json").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Image png = readImage((dir / "a.png").string());
+  EXPECT_EQ(png.width, 80);
+  EXPECT_EQ(png.height, 60);
+  const auto stats = nlohmann::json::parse(readFile(dir / "stats.json"));
+  for (const char* key : {"method", "backend", "renderer", "width", "height", "lights", "load_ms",
+                          "render_ms", "total_ms"}) {
+    EXPECT_TRUE(stats.contains(key)) << key;
+  }
+  EXPECT_EQ(stats["method"], "reference");
+  EXPECT_EQ(stats["lights"], 16);
+  EXPECT_EQ(stats["width"], 80);
+  ASSERT_EQ(manylight("render " + scene + " -o " + (dir / "a.exr").string() + " --size 80x60").exitCode, 0);
+  EXPECT_EQ(readImage((dir / "a.exr").string()).width, 80);
+}
+
+TEST(Cli, PngIsWithinOneCodeOfTheOracle) {
+  RoomOptions o;
+  o.lightCount = 7;
+  const std::string scene = roomScene(o);
+  const fs::path out = testFolder() / "o.png";
+  ASSERT_EQ(manylight("render " + scene + " -o " + out.string() + " --size 120x90").exitCode, 0);
+  const Image png = readImage(out.string());
+  const Scene s = loadGltf(scene);
+  RenderRequest request;
+  request.width = 120;
+  request.height = 90;
+  const OracleImage oracle = renderOracle(s, resolveCamera(s, request), s.lights, 120, 90);
+  int compared = 0, off = 0;
+  for (int y = 0; y < 90; ++y) {
+    for (int x = 0; x < 120; ++x) {
+      if (!oracle.interior(x, y)) continue;
+      ++compared;
+      for (int c = 0; c < 3; ++c) {
+        const int got = int(std::lround(png.pixel(x, y)[c] * 255.0f));
+        const int want = encodeSrgb8(oracle.image.pixel(x, y)[c]);
+        off += std::abs(got - want) > 1;
+      }
+    }
+  }
+  EXPECT_GT(compared, 120 * 90 / 2);
+  EXPECT_EQ(off, 0) << "channels more than 1 code off";
+}
+
+TEST(Cli, RerenderingIsBitIdenticalAndBackendsAgree) {
+  RoomOptions o;
+  o.lightCount = 32;
+  const std::string scene = roomScene(o);
+  const fs::path dir = testFolder();
+  for (const char* ext : {".png", ".exr"}) {
+    std::vector<std::string> files;
+    for (const char* backend : {"egl", "egl", "osmesa"}) {
+      const std::string out = (dir / (std::string(backend) + std::to_string(files.size()) + ext)).string();
+      const ProcessResult r = manylight("render " + scene + " -o " + out + " --size 96x64 --backend " + backend);
+      ASSERT_EQ(r.exitCode, 0) << r.err;
+      files.push_back(readFile(out));
+    }
+    EXPECT_EQ(files[0], files[1]) << ext << ": two EGL renders differ";
+    EXPECT_EQ(files[0], files[2]) << ext << ": EGL and OSMesa differ";
+  }
+}
+
+struct BadInput {
+  const char* name;
+  const char* json;  // file content; nullptr: the file is missing
+  const char* args;
+  const char* message;  // after "manylight: PATH: "
+};
+
+const BadInput kBadInputs[] = {
+    {"missing.gltf", nullptr, "", "cannot open: No such file or directory"},
+    {"not-json.gltf", "{ this is not json", "", ""},
+    {"min-version.gltf", R"({"asset": {"version": "2.0", "minVersion": "2.1"}})", "",
+     "asset.minVersion 2.1 is not supported, expected 2.0"},
+    {"version-1.gltf", R"({"asset": {"version": "1.0"}})", "",
+     "asset.version '1.0' is not supported, expected 2.x"},
+    {"required.gltf",
+     R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_draco_mesh_compression"],
+         "extensionsRequired": ["KHR_draco_mesh_compression"]})",
+     "", "required extension KHR_draco_mesh_compression is not supported"},
+    {"bad-spot.gltf",
+     R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+         "extensions": {"KHR_lights_punctual": {"lights": [
+           {"type": "spot", "spot": {"innerConeAngle": 0.8, "outerConeAngle": 0.5}}]}},
+         "nodes": [{"extensions": {"KHR_lights_punctual": {"light": 0}}}],
+         "scenes": [{"nodes": [0]}], "scene": 0})",
+     "", "light 0: spot cone angles must satisfy 0 <= inner < outer <= pi/2"},
+    {"over-budget.gltf",
+     R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+         "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point"}]}},
+         "nodes": [{"extensions": {"KHR_lights_punctual": {"light": 0}}},
+                   {"extensions": {"KHR_lights_punctual": {"light": 0}}},
+                   {"extensions": {"KHR_lights_punctual": {"light": 0}}}],
+         "scenes": [{"nodes": [0, 1, 2]}]})",
+     "--light-budget 2", "more than 2 lights exceed the light budget (--light-budget)"},
+    {"cycle.gltf",
+     R"({"asset": {"version": "2.0"}, "nodes": [{"children": [1]}, {"children": [0]}],
+         "scenes": [{"nodes": [0]}]})",
+     "", "node 0 is reached twice (a cycle or several parents)"},
+    {"no-camera-5.gltf", R"({"asset": {"version": "2.0"}})", "--camera 5",
+     "camera 5 does not exist (the scene has 0)"},
+};
+
+TEST(Cli, BadInputsFailWithOneLineAndNoOutput) {
+  for (const BadInput& b : kBadInputs) {
+    SCOPED_TRACE(b.name);
+    const fs::path path = testFolder() / b.name;
+    if (b.json) writeText(b.name, b.json);
+    const fs::path out = testFolder() / "out.png";
+    const ProcessResult r = manylight("render " + path.string() + " -o " + out.string() + " " + b.args);
+    EXPECT_EQ(r.exitCode, 1);
+    const std::string prefix = "manylight: " + path.string() + ": ";
+    EXPECT_EQ(r.err.rfind(prefix, 0), 0u) << r.err;
+    if (*b.message) EXPECT_EQ(r.err, prefix + b.message + "\n");
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_EQ(std::distance(fs::directory_iterator(testFolder()), fs::directory_iterator()),
+              b.json ? 2 : 1)
+        << "a temporary file was left behind";
+    fs::remove(path);
+  }
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(manylight("render").exitCode, 2);
+  EXPECT_EQ(manylight("render x.gltf -o y.png --size 0x5").exitCode, 2);
+  EXPECT_EQ(manylight("render x.gltf -o y.png --frobnicate").exitCode, 2);
+  EXPECT_EQ(manylight("--help").exitCode, 0);
+}
+
+TEST(Cli, UnwritableOutputLeavesNothing) {
+  RoomOptions o;
+  o.lightCount = 1;
+  const std::string scene = roomScene(o);
+  const fs::path blocker = testFolder() / "file";
+  std::ofstream(blocker) << "x";
+  const std::string out = (blocker / "sub" / "x.png").string();  // parent is a file
+  const ProcessResult r = manylight("render " + scene + " -o " + out + " --size 16x16");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("manylight: " + out + ": "), std::string::npos) << r.err;
+  const ProcessResult bad = manylight("render " + scene + " -o " + (testFolder() / "x.bmp").string());
+  EXPECT_EQ(bad.err, "manylight: " + (testFolder() / "x.bmp").string() +
+                         ": unsupported output format, expected .png or .exr\n");
+  EXPECT_FALSE(fs::exists(testFolder() / "x.bmp"));
+}
+
+}  // namespace
+}  // namespace manylight::testing

@@ -1,0 +1,169 @@
+// The GPU reference method against the CPU double-precision oracle, on generated scenes.
+#include <gtest/gtest.h>
+
+#include "render/render_job.h"
+#include "scene/gltf_loader.h"
+#include "tests/oracle.h"
+#include "tests/test_support.h"
+
+namespace manylight::testing {
+namespace {
+
+struct Comparison {
+  int compared = 0;
+  int failing = 0;
+  double maxRelative = 0.0;
+};
+
+// Tolerance: the GPU computes in float, the oracle in double. Over a few hundred lights
+// float sums and positions reconstructed from a float G-buffer stay within 1e-3 relative
+// of the exact value (measured: see the closing note of the foundation issue). Values under
+// 1e-3 are compared against 1e-3 instead, so near-black pixels don't turn rounding noise
+// into large relative errors.
+constexpr double kRelativeTolerance = 1e-3;
+constexpr double kFloor = 1e-3;
+// Interior pixels may still disagree where a triangle edge inside one surface meets a
+// grazing view; allow 0.1% of them to fail (Filament's threshold), none so far.
+constexpr double kMaxFailingFraction = 0.001;
+
+Comparison compare(const Image& gpu, const OracleImage& oracle, const std::string& name) {
+  Comparison c;
+  Image diff = gpu;
+  for (int y = 0; y < gpu.height; ++y) {
+    for (int x = 0; x < gpu.width; ++x) {
+      const float* g = gpu.pixel(x, y);
+      const float* o = oracle.image.pixel(x, y);
+      float* d = diff.pixel(x, y);
+      d[0] = d[1] = d[2] = 0.0f;
+      d[3] = 1.0f;
+      if (!oracle.interior(x, y)) continue;
+      ++c.compared;
+      bool bad = g[3] != o[3];
+      for (int ch = 0; ch < 3; ++ch) {
+        const double rel = std::abs(double(g[ch]) - o[ch]) / std::max(double(o[ch]), kFloor);
+        c.maxRelative = std::max(c.maxRelative, rel);
+        bad = bad || !(rel <= kRelativeTolerance);
+        d[ch] = float(rel / kRelativeTolerance);
+      }
+      c.failing += bad;
+    }
+  }
+  if (c.failing > c.compared * kMaxFailingFraction) {
+    const auto dir = artefactFolder();
+    writeImage(gpu, (dir / (name + "-gpu.exr")).string());
+    writeImage(oracle.image, (dir / (name + "-oracle.exr")).string());
+    writeImage(diff, (dir / (name + "-diff.exr")).string());
+    std::cerr << "render test " << name << ": images in " << dir << "\n";
+  }
+  return c;
+}
+
+struct OracleCase {
+  const char* name;
+  int lights;
+  bool mix, withRange, textured, specular;
+  int camera;
+};
+
+class OracleTest : public ::testing::TestWithParam<OracleCase> {};
+
+TEST_P(OracleTest, ReferenceMatchesOracle) {
+  const OracleCase& p = GetParam();
+  context();
+  RoomOptions o;
+  o.lightCount = p.lights;
+  o.mix = p.mix;
+  o.withRange = p.withRange;
+  o.textured = p.textured;
+  o.specular = p.specular;
+  const Scene scene = loadGltf(roomScene(o));
+  RenderRequest request;
+  request.width = 160;
+  request.height = 120;
+  request.camera = p.camera;
+  request.ambient = glm::vec3(0.02f, 0.03f, 0.04f);
+  const RenderOutcome gpu = renderScene(scene, request);
+  const OracleImage oracle = renderOracle(scene, resolveCamera(scene, request), scene.lights,
+                                          request.width, request.height, glm::dvec3(request.ambient));
+  const Comparison c = compare(gpu.image, oracle, p.name);
+  EXPECT_GT(c.compared, request.width * request.height / 2);
+  EXPECT_LE(c.failing, c.compared * kMaxFailingFraction)
+      << c.failing << " of " << c.compared << " pixels off; max relative error " << c.maxRelative;
+  RecordProperty("max_relative_error", std::to_string(c.maxRelative));
+  std::cout << p.name << ": max relative error " << c.maxRelative << " over " << c.compared
+            << " pixels\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, OracleTest,
+    ::testing::Values(OracleCase{"one_point", 1, false, false, false, false, 0},
+                      OracleCase{"seven_mixed_range_textured", 7, true, true, true, false, 0},
+                      OracleCase{"sixty_four_mixed_specular", 64, true, true, true, true, 0},
+                      OracleCase{"thousand_mixed_no_range", 1000, true, false, true, false, 0},
+                      OracleCase{"thousand_mixed_range_specular", 1000, true, true, false, true, 0},
+                      OracleCase{"orthographic_seven", 7, true, true, true, true, 1}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Render, DefaultRigLightsASceneWithoutLights) {
+  context();
+  RoomOptions o;
+  o.lightCount = 0;
+  const Scene scene = loadGltf(roomScene(o));
+  RenderRequest request;
+  request.width = 96;
+  request.height = 72;
+  const RenderOutcome gpu = renderScene(scene, request);
+  EXPECT_TRUE(gpu.defaultRig);
+  EXPECT_EQ(gpu.lightCount, 3u);
+  const Camera camera = resolveCamera(scene, request);
+  const OracleImage oracle = renderOracle(scene, camera, defaultLightRig(camera), 96, 72);
+  const Comparison c = compare(gpu.image, oracle, "default_rig");
+  EXPECT_LE(c.failing, c.compared * kMaxFailingFraction) << "max relative " << c.maxRelative;
+}
+
+TEST(Render, FramingShowsTheWholeSceneWithoutCamera) {
+  context();
+  // A box alone, no camera, no lights: framed from the 3/4 view and lit by the rig.
+  GltfBuilder b;
+  b.addBox({0.0f, 0.0f, 0.0f}, {1.0f, 2.0f, 1.0f}, b.addMaterial({}));
+  const std::string path = (testFolder() / "box.gltf").string();
+  b.write(path);
+  const Scene scene = loadGltf(path);
+  RenderRequest request;
+  request.width = 64;
+  request.height = 64;
+  const RenderOutcome out = renderScene(scene, request);
+  EXPECT_TRUE(out.framed);
+  // Nothing touches the border (5% margin), and the box covers a good part of the image.
+  int covered = 0;
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const bool hit = out.image.pixel(x, y)[3] > 0.0f;
+      covered += hit;
+      if (x == 0 || y == 0 || x == 63 || y == 63) EXPECT_FALSE(hit) << x << "," << y;
+    }
+  }
+  EXPECT_GT(covered, 64 * 64 / 8);
+}
+
+TEST(Render, ManyPassesEqualOnePass) {
+  // 70,000 lights at 16×16 is one pass; at 640x480 the same lights take several. Check the
+  // split by rendering a small image whose pass size forces splitting.
+  context();
+  const int pixels = 320 * 240;
+  ASSERT_LT(ReferenceMethod::lightsPerPass(pixels), 1000);
+  RoomOptions o;
+  o.lightCount = 1000;
+  const Scene scene = loadGltf(roomScene(o));
+  RenderRequest request;
+  request.width = 320;
+  request.height = 240;
+  const RenderOutcome gpu = renderScene(scene, request);
+  EXPECT_GT(gpu.frame.lightingPasses, 1);
+  const OracleImage oracle = renderOracle(scene, resolveCamera(scene, request), scene.lights, 320, 240);
+  const Comparison c = compare(gpu.image, oracle, "many_passes");
+  EXPECT_LE(c.failing, c.compared * kMaxFailingFraction) << "max relative " << c.maxRelative;
+}
+
+}  // namespace
+}  // namespace manylight::testing

@@ -1,0 +1,143 @@
+// glTF loading into scene/ types: spec defaults, transforms, lights, cameras, materials.
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "scene/error.h"
+#include "scene/gltf_loader.h"
+#include "tests/test_support.h"
+
+namespace manylight::testing {
+namespace {
+
+std::string write(const std::string& name, const std::string& json) {
+  const auto p = testFolder() / name;
+  std::ofstream(p) << json;
+  return p.string();
+}
+
+constexpr float kEps = 1e-5f;
+
+void expectNear(glm::vec3 a, glm::vec3 b) {
+  EXPECT_NEAR(a.x, b.x, kEps);
+  EXPECT_NEAR(a.y, b.y, kEps);
+  EXPECT_NEAR(a.z, b.z, kEps);
+}
+
+TEST(Scene, LightDefaultsFollowTheSpec) {
+  const Scene s = loadGltf(write("defaults.gltf", R"({"asset": {"version": "2.0"},
+    "extensions": {"KHR_lights_punctual": {"lights": [
+      {"type": "point"}, {"type": "spot", "spot": {}}, {"type": "directional"}]}},
+    "nodes": [{"extensions": {"KHR_lights_punctual": {"light": 0}}},
+              {"extensions": {"KHR_lights_punctual": {"light": 1}}},
+              {"extensions": {"KHR_lights_punctual": {"light": 2}}}],
+    "scenes": [{"nodes": [0, 1, 2]}]})"));
+  ASSERT_EQ(s.lights.size(), 3u);
+  for (const Light& l : s.lights) {
+    expectNear(l.colour, glm::vec3(1.0f));
+    EXPECT_EQ(l.intensity, 1.0f);
+    EXPECT_EQ(l.range, 0.0f);  // infinite
+    expectNear(l.direction, {0.0f, 0.0f, -1.0f});
+    expectNear(l.position, {0.0f, 0.0f, 0.0f});
+  }
+  EXPECT_EQ(s.lights[0].type, LightType::Point);
+  EXPECT_EQ(s.lights[1].type, LightType::Spot);
+  EXPECT_NEAR(s.lights[1].innerConeAngle, 0.0f, kEps);
+  EXPECT_NEAR(s.lights[1].outerConeAngle, float(M_PI / 4), kEps);
+  EXPECT_EQ(s.lights[2].type, LightType::Directional);
+}
+
+TEST(Scene, LightsTakeTheirNodesWorldTransform) {
+  // Parent: translate (1,2,3), rotate 90° about Y. Child: translate (0,0,-1) by matrix.
+  // A light looking down −Z in the child frame looks down −X in the world.
+  const Scene s = loadGltf(write("transforms.gltf", R"({"asset": {"version": "2.0"},
+    "extensions": {"KHR_lights_punctual": {"lights": [
+      {"type": "spot", "color": [1, 0.5, 0.25], "intensity": 20, "range": 7,
+       "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.4}}]}},
+    "nodes": [{"translation": [1, 2, 3], "rotation": [0, 0.7071067811865476, 0, 0.7071067811865476],
+               "children": [1]},
+              {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,-1,1],
+               "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+    "scenes": [{"nodes": [0]}], "scene": 0})"));
+  ASSERT_EQ(s.lights.size(), 1u);
+  const Light& l = s.lights[0];
+  expectNear(l.position, {0.0f, 2.0f, 3.0f});
+  expectNear(l.direction, {-1.0f, 0.0f, 0.0f});
+  expectNear(l.colour, {1.0f, 0.5f, 0.25f});
+  EXPECT_EQ(l.intensity, 20.0f);
+  EXPECT_EQ(l.range, 7.0f);
+  EXPECT_NEAR(l.innerConeAngle, 0.2f, kEps);
+  EXPECT_NEAR(l.outerConeAngle, 0.4f, kEps);
+}
+
+TEST(Scene, CamerasPerspectiveAndOrthographic) {
+  const Scene s = loadGltf(write("cameras.gltf", R"({"asset": {"version": "2.0"},
+    "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1}},
+                {"type": "orthographic", "orthographic": {"xmag": 2, "ymag": 3, "znear": 0.5, "zfar": 50}}],
+    "nodes": [{"camera": 0, "translation": [0, 1, 5], "scale": [2, 2, 2]}, {"camera": 1}],
+    "scenes": [{"nodes": [0, 1]}]})"));
+  ASSERT_EQ(s.cameras.size(), 2u);
+  EXPECT_FALSE(s.cameras[0].orthographic);
+  EXPECT_NEAR(s.cameras[0].yfov, 0.7f, kEps);
+  EXPECT_EQ(s.cameras[0].zfar, 0.0f);  // infinite
+  expectNear(glm::vec3(s.cameras[0].world[3]), {0.0f, 1.0f, 5.0f});
+  expectNear(glm::vec3(s.cameras[0].world[0]), {1.0f, 0.0f, 0.0f});  // scale removed
+  EXPECT_TRUE(s.cameras[1].orthographic);
+  EXPECT_EQ(s.cameras[1].ymag, 3.0f);
+  EXPECT_EQ(s.cameras[1].zfar, 50.0f);
+}
+
+TEST(Scene, MaterialsAndGeometry) {
+  GltfBuilder b;
+  BuilderMaterial m;
+  m.baseColor = {0.5f, 0.25f, 1.0f, 1.0f};
+  m.metallic = 0.3f;
+  m.roughness = 0.6f;
+  m.emissive = {0.1f, 0.2f, 0.3f};
+  m.doubleSided = true;
+  b.addBox({1.0f, 0.0f, 0.0f}, {2.0f, 2.0f, 2.0f}, b.addMaterial(m));
+  b.addSphere({0.0f, 0.0f, 0.0f}, 1.0f, b.addMaterial({}), 8);
+  const std::string path = (testFolder() / "geometry.glb").string();
+  b.write(path);
+  const Scene s = loadGltf(path);
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[0].baseColorFactor, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
+  EXPECT_NEAR(s.materials[0].metallic, 0.3f, kEps);
+  EXPECT_NEAR(s.materials[0].roughness, 0.6f, kEps);
+  expectNear(s.materials[0].emissive, {0.1f, 0.2f, 0.3f});
+  EXPECT_TRUE(s.materials[0].doubleSided);
+  ASSERT_EQ(s.instances.size(), 2u);
+  const Primitive& box = s.meshes[s.instances[0].mesh].primitives[0];
+  EXPECT_EQ(box.indices.size(), 36u);
+  EXPECT_EQ(box.positions.size(), 24u);
+  const Bounds bounds = s.bounds();
+  expectNear(bounds.min, {-0.5f, -1.0f, -1.0f});
+  expectNear(bounds.max, {2.0f, 1.0f, 1.0f});
+}
+
+TEST(Scene, DefaultMaterialIsPureLambert) {
+  const Material m = defaultMaterial();
+  EXPECT_EQ(m.metallic, 0.0f);
+  EXPECT_EQ(m.roughness, 1.0f);
+  EXPECT_EQ(m.baseColorFactor, glm::vec4(1.0f));
+}
+
+TEST(Scene, NoScenesShowsRootNodesAndUnknownTypesFail) {
+  const Scene s = loadGltf(write("noscene.gltf", R"({"asset": {"version": "2.0"},
+    "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point"}]}},
+    "nodes": [{"extensions": {"KHR_lights_punctual": {"light": 0}}}]})"));
+  EXPECT_EQ(s.lights.size(), 1u);
+  const std::string bad = write("badtype.gltf", R"({"asset": {"version": "2.0"},
+    "extensions": {"KHR_lights_punctual": {"lights": [{"type": "area"}]}},
+    "nodes": [{"extensions": {"KHR_lights_punctual": {"light": 0}}}]})");
+  try {
+    loadGltf(bad);
+    FAIL() << "expected SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), bad + ": light 0: unknown type 'area'");
+  }
+}
+
+}  // namespace
+}  // namespace manylight::testing

@@ -1,0 +1,92 @@
+// The shading model's pieces, the light packing and the sRGB encoding, without GL.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "bake/light_pack.h"
+#include "bake/light_texture_layout.h"
+#include "render/image.h"
+#include "scene/shading_model.h"
+
+namespace manylight {
+namespace {
+
+TEST(Shading, FullyRoughDielectricIsPureLambert) {
+  const auto m = shading::phongFromMetallicRoughness(glm::dvec3(0.8, 0.5, 0.2), 0.0, 1.0);
+  EXPECT_EQ(m.specular, glm::dvec3(0.0));
+  EXPECT_EQ(m.albedo, glm::dvec3(0.8, 0.5, 0.2));
+  const auto metal = shading::phongFromMetallicRoughness(glm::dvec3(0.9, 0.6, 0.3), 1.0, 0.5);
+  EXPECT_EQ(metal.albedo, glm::dvec3(0.0));
+  EXPECT_NEAR(metal.specular.r, 0.9, 1e-12);
+  EXPECT_NEAR(metal.exponent, 2.0 / std::pow(0.25, 2) - 2.0, 1e-9);
+}
+
+TEST(Shading, RangeWindowAndCone) {
+  EXPECT_EQ(shading::rangeWindow(5.0, 0.0), 1.0);
+  EXPECT_EQ(shading::rangeWindow(0.0, 2.0), 1.0);
+  EXPECT_EQ(shading::rangeWindow(2.0, 2.0), 0.0);
+  EXPECT_NEAR(shading::rangeWindow(1.0, 2.0), std::pow(1.0 - 1.0 / 16.0, 2), 1e-12);
+  EXPECT_EQ(shading::smoothstep(0.5, 0.8, 0.4), 0.0);
+  EXPECT_EQ(shading::smoothstep(0.5, 0.8, 0.9), 1.0);
+  EXPECT_NEAR(shading::smoothstep(0.5, 0.8, 0.65), 0.5, 1e-12);
+}
+
+TEST(Shading, IrradianceFollowsInverseSquareAndCosine) {
+  Light l;
+  l.position = {0.0f, 2.0f, 0.0f};
+  l.intensity = 8.0f;
+  glm::dvec3 dir;
+  const glm::dvec3 e = shading::irradiance(l, glm::dvec3(0.0), glm::dvec3(0, 1, 0), dir);
+  EXPECT_NEAR(e.r, 2.0, 1e-12);  // 8 cd / 2² · cos 0
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.intensity = 3.0f;
+  sun.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f));
+  EXPECT_NEAR(shading::irradiance(sun, glm::dvec3(5.0), glm::dvec3(0, 1, 0), dir).g, 3.0 / std::sqrt(2.0), 1e-6);
+}
+
+// The packed cone (scale, offset) reproduces the smoothstep of the shading model.
+TEST(LightPack, LayoutMatchesTheShadingModel) {
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {1.0f, 2.0f, 3.0f};
+  spot.direction = {0.0f, -1.0f, 0.0f};
+  spot.range = 4.0f;
+  spot.innerConeAngle = 0.3f;
+  spot.outerConeAngle = 0.6f;
+  spot.colour = {1.0f, 0.5f, 0.25f};
+  spot.intensity = 2.0f;
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = {0.0f, 0.0f, -1.0f};
+  const std::vector<float> t = packLights({spot, sun});
+  ASSERT_EQ(t.size(), 2u * layout::kFloatsPerLight);
+  EXPECT_EQ(t[0], 1.0f);
+  EXPECT_FLOAT_EQ(t[3], 1.0f / 16.0f);
+  EXPECT_EQ(t[8], 2.0f);
+  EXPECT_EQ(t[10], 0.5f);
+  for (double c : {0.7, 0.8, 0.85, 0.9, 0.95, 0.99}) {
+    const double x = std::clamp(c * t[7] + t[11], 0.0, 1.0);
+    EXPECT_NEAR(x * x * (3 - 2 * x), shading::smoothstep(std::cos(0.6), std::cos(0.3), c), 1e-5);
+  }
+  const float* d = &t[layout::kFloatsPerLight];
+  EXPECT_EQ(d[2], 1.0f);  // towards the light
+  EXPECT_EQ(d[3], layout::kDirectionalMarker);
+  EXPECT_EQ(d[7], 0.0f);
+  EXPECT_EQ(d[11], 1.0f);
+}
+
+TEST(Srgb, ExactEncodingNotAPowerLaw) {
+  EXPECT_EQ(encodeSrgb8(0.0), 0);
+  EXPECT_EQ(encodeSrgb8(1.0), 255);
+  EXPECT_EQ(encodeSrgb8(0.5), 188);  // a 2.2 power would give 186
+  EXPECT_EQ(encodeSrgb8(0.0015654), 5);  // linear segment: 12.92 · x · 255 = 5.16
+  EXPECT_EQ(encodeSrgb8(-1.0), 0);
+  EXPECT_EQ(encodeSrgb8(std::nan("")), 0);
+  for (int code = 0; code < 256; ++code) {
+    EXPECT_EQ(encodeSrgb8(decodeSrgb8(std::uint8_t(code))), code);
+  }
+}
+
+}  // namespace
+}  // namespace manylight
