@@ -8,10 +8,21 @@
 
 namespace manylight {
 
-std::vector<float> packLights(const std::vector<Light>& lights) {
-  std::vector<float> out(lights.size() * layout::kFloatsPerLight, 0.0f);
-  for (std::size_t i = 0; i < lights.size(); ++i) {
-    const Light& l = lights[i];
+PackedLights packLights(const std::vector<Light>& lights) {
+  PackedLights packed;
+  std::vector<const Light*> order;
+  order.reserve(lights.size());
+  for (LightType type : {LightType::Directional, LightType::Point, LightType::Spot}) {
+    if (type == LightType::Point) packed.pointStart = int(order.size());
+    if (type == LightType::Spot) packed.spotStart = int(order.size());
+    for (const Light& l : lights) {
+      if (l.type == type) order.push_back(&l);
+    }
+  }
+  std::vector<float>& out = packed.texels;
+  out.assign(lights.size() * layout::kFloatsPerLight, 0.0f);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Light& l = *order[i];
     float* t = &out[i * layout::kFloatsPerLight];
     const glm::vec3 radiant = l.colour * l.intensity;
     if (l.type == LightType::Directional) {
@@ -34,7 +45,7 @@ std::vector<float> packLights(const std::vector<Light>& lights) {
     t[8] = radiant.r, t[9] = radiant.g, t[10] = radiant.b;
     t[11] = offset;
   }
-  return out;
+  return packed;
 }
 
 }  // namespace manylight

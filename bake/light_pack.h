@@ -6,7 +6,13 @@
 
 namespace manylight {
 
-// kFloatsPerLight floats per light, in the order of `lights`.
-std::vector<float> packLights(const std::vector<Light>& lights);
+struct PackedLights {
+  std::vector<float> texels;  // kFloatsPerLight floats per light
+  int pointStart = 0;         // first point light; directional lights come before it
+  int spotStart = 0;          // first spot light; point lights come before it
+};
+
+// Packs `lights` grouped by type (directional, point, spot), each group in scene order.
+PackedLights packLights(const std::vector<Light>& lights);
 
 }  // namespace manylight

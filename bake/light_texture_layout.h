@@ -13,10 +13,13 @@
 //   texel 2  .rgb  colour · intensity (linear RGB; candela or lux)
 //            .w    cone offset = −cos outer · cone scale; else 1
 //
+// Lights are ordered by type: all directional lights, then all point lights, then all spot
+// lights (packLights reports where each group starts), so the shader runs one loop per type
+// and evaluates only what that type needs.
+//
 // With l the unit vector towards the light, cone(l) = t²(3 − 2t) where
 // t = clamp(dot(−l, axis) · scale + offset, 0, 1): the smoothstep of scene/shading_model.h,
-// and exactly 1 for point and directional lights. Directional lights need no branch: their
-// "position" is a unit vector, so the squared distance is 1 and the falloff 1/d² is 1.
+// and exactly 1 for point and directional lights.
 namespace manylight::layout {
 
 inline constexpr int kTexelsPerLight = 3;

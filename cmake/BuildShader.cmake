@@ -25,6 +25,9 @@ foreach(variant IN LISTS variant_list)
   endif()
   get_filename_component(ext "${OUT}" LAST_EXT)
   string(SUBSTRING "${ext}" 1 -1 stage)
+  if(define_args)
+    list(PREPEND define_args -l)  # glslangValidator takes -D only when linking
+  endif()
   execute_process(COMMAND "${VALIDATOR}" -S ${stage} ${define_args} "${OUT}.tmp"
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)

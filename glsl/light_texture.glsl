@@ -3,17 +3,37 @@
 // bake/light_texture_layout.h.
 uniform samplerBuffer uLights;
 
-// Irradiance at s.position from light i, and the unit vector l towards it.
-vec3 lightIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
+// Lights are stored by type: directional in [0, uPointStart), point in
+// [uPointStart, uSpotStart), spot from uSpotStart on, so each loop evaluates only what its
+// type needs (a point light skips the cone, a directional light the distance).
+uniform int uPointStart;
+uniform int uSpotStart;
+
+// Irradiance from directional light i, and the unit vector l towards it.
+vec3 directionalIrradiance(int i, vec3 n, out vec3 l) {
   vec4 a = texelFetch(uLights, 3 * i);
-  vec4 b = texelFetch(uLights, 3 * i + 1);
   vec4 c = texelFetch(uLights, 3 * i + 2);
-  vec3 toLight = a.xyz - p * step(0.0, a.w);  // directional: a.xyz is already the unit vector
+  l = a.xyz;
+  return c.rgb * max(dot(n, l), 0.0);
+}
+
+// Irradiance at p from point light i (falloff 1/d², range window), and l.
+vec3 pointIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
+  vec4 a = texelFetch(uLights, 3 * i);
+  vec4 c = texelFetch(uLights, 3 * i + 2);
+  vec3 toLight = a.xyz - p;
   float d2 = max(dot(toLight, toLight), kMinDistanceSquared);
-  l = toLight * inversesqrt(d2);
-  float x = d2 * max(a.w, 0.0);  // (d / range)², 0 without range
+  float invD = inversesqrt(d2);
+  l = toLight * invD;
+  float x = d2 * a.w;  // (d / range)², 0 without range
   float window = clamp(1.0 - x * x, 0.0, 1.0);
-  float t = clamp(dot(-l, b.xyz) * b.w + c.w, 0.0, 1.0);
-  float cone = t * t * (3.0 - 2.0 * t);
-  return c.rgb * (max(dot(n, l), 0.0) * window * window * cone / d2);
+  return c.rgb * (max(dot(n, l), 0.0) * window * window * invD * invD);
+}
+
+// Irradiance at p from spot light i: the point light's, times the cone's smoothstep.
+vec3 spotIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
+  vec3 e = pointIrradiance(i, p, n, l);
+  vec4 b = texelFetch(uLights, 3 * i + 1);
+  float t = clamp(dot(-l, b.xyz) * b.w + texelFetch(uLights, 3 * i + 2).w, 0.0, 1.0);
+  return e * (t * t * (3.0 - 2.0 * t));
 }

@@ -81,6 +81,10 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
   for (const Texture& t : scene.textures) textures_.push_back(uploadTexture(t));
   for (const MeshInstance& inst : scene.instances) {
     for (const GpuPrimitive& g : meshes_[inst.mesh]) {
+      if (g.material >= 0) {
+        const Material& m = scene.materials[g.material];
+        hasSpecular_ = hasSpecular_ || !(m.metallic <= 0.0f && m.roughness >= 1.0f);
+      }
       draws_.push_back({&g.vao, g.indexCount, g.hasTexcoords, g.hasColours, g.material, inst.world,
                         glm::determinant(glm::mat3(inst.world)) < 0.0f});
     }
@@ -95,8 +99,11 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
     throw gl::GlError(std::to_string(lights.size()) + " lights need " + std::to_string(texels) +
                       " texels, the driver's texture buffers hold " + std::to_string(maxTexels));
   }
-  std::vector<float> packed = packLights(lights);
+  PackedLights packedLights = packLights(lights);
+  std::vector<float>& packed = packedLights.texels;
   packed.resize(texels * 4, 0.0f);
+  pointStart_ = packedLights.pointStart;
+  spotStart_ = packedLights.spotStart;
   glBindBuffer(GL_TEXTURE_BUFFER, lightBuffer_.id());
   glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(packed.size() * sizeof(float)), packed.data(),
                GL_STATIC_DRAW);

@@ -26,6 +26,11 @@ class GpuScene {
   const gl::Texture* texture(int index) const { return &textures_[index]; }
   const gl::Texture& lightTexture() const { return lightTexture_; }
   int lightCount() const { return lightCount_; }
+  // Where point and spot lights start in the light texture (see light_texture_layout.h).
+  int pointStart() const { return pointStart_; }
+  int spotStart() const { return spotStart_; }
+  // Whether any drawn material has a Phong specular term (see scene/shading_model.h).
+  bool hasSpecular() const { return hasSpecular_; }
 
  private:
   struct GpuPrimitive {
@@ -40,7 +45,8 @@ class GpuScene {
   std::vector<Draw> draws_;
   gl::Buffer lightBuffer_;
   gl::Texture lightTexture_;
-  int lightCount_ = 0;
+  int lightCount_ = 0, pointStart_ = 0, spotStart_ = 0;
+  bool hasSpecular_ = false;
 };
 
 }  // namespace manylight

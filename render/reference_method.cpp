@@ -8,14 +8,30 @@ namespace manylight {
 
 using namespace gl::api;
 
-ReferenceMethod::ReferenceMethod()
-    : program_("fullscreen.vert", "lighting_reference.frag", {}, {"oRadiance"}) {}
+std::vector<std::string> ReferenceMethod::variant(const GpuScene& scene) {
+  std::vector<std::string> defines;
+  if (scene.pointStart() > 0) defines.push_back("HAS_DIRECTIONAL");
+  if (scene.spotStart() > scene.pointStart()) defines.push_back("HAS_POINT");
+  if (scene.lightCount() > scene.spotStart()) defines.push_back("HAS_SPOT");
+  if (scene.hasSpecular()) defines.push_back("HAS_SPECULAR");
+  return defines;
+}
+
+const gl::Program& ReferenceMethod::program(const std::vector<std::string>& defines) const {
+  auto it = programs_.find(defines);
+  if (it == programs_.end()) {
+    it = programs_.emplace(defines, gl::Program("fullscreen.vert", "lighting_reference.frag", defines,
+                                                {"oRadiance"})).first;
+  }
+  return it->second;
+}
 
 int ReferenceMethod::lightsPerPass(int pixels) {
   return int(std::clamp<long long>(kEvaluationsPerPass / std::max(pixels, 1), 1, 1 << 20));
 }
 
-int ReferenceMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view) const {
+int ReferenceMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
+                           int perPass) const {
   glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.lightingFramebuffer().id());
   glViewport(0, 0, gbuffer.width(), gbuffer.height());
   glDisable(GL_DEPTH_TEST);
@@ -23,6 +39,7 @@ int ReferenceMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const 
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
+  const gl::Program& program_ = program(variant(scene));
   program_.use();
   const GBuffer::Target inputs[] = {GBuffer::kPosition, GBuffer::kNormal, GBuffer::kAlbedo,
                                     GBuffer::kSpecular};
@@ -38,8 +55,10 @@ int ReferenceMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const 
   glUniform3fv(program_.uniform("uEye"), 1, glm::value_ptr(view.eye));
   glUniform3fv(program_.uniform("uForward"), 1, glm::value_ptr(view.forward));
   glUniform1i(program_.uniform("uOrthographic"), view.orthographic ? 1 : 0);
+  glUniform1i(program_.uniform("uPointStart"), scene.pointStart());
+  glUniform1i(program_.uniform("uSpotStart"), scene.spotStart());
 
-  const int perPass = lightsPerPass(gbuffer.width() * gbuffer.height());
+  if (perPass <= 0) perPass = lightsPerPass(gbuffer.width() * gbuffer.height());
   int passes = 0;
   for (int first = 0; first < scene.lightCount(); first += perPass) {
     glUniform1i(program_.uniform("uFirstLight"), first);

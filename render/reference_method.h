@@ -1,6 +1,10 @@
 #pragma once
 // The reference method: every light at every pixel, exact up to float arithmetic. Ground
 // truth for every other method.
+#include <map>
+#include <string>
+#include <vector>
+
 #include "gl/objects.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
@@ -10,21 +14,28 @@ namespace manylight {
 
 class ReferenceMethod {
  public:
-  // Compiles the lighting program; needs a current context. Throws gl::GlError.
-  ReferenceMethod();
+  // Needs a current context. Programs are compiled on first use, one per variant.
+  ReferenceMethod() = default;
+
+  // The #defines of the lighting program for a scene: its light types and whether any
+  // material has a specular term. Never its light count.
+  static std::vector<std::string> variant(const GpuScene& scene);
 
   // Adds every light's contribution to the radiance target of `gbuffer`, in passes of at
-  // most lightsPerPass(...) lights. Returns the number of passes.
-  int light(const GpuScene& scene, const GBuffer& gbuffer, const View& view) const;
+  // most `perPass` lights (0: lightsPerPass(pixels)). Returns the number of passes.
+  int light(const GpuScene& scene, const GBuffer& gbuffer, const View& view, int perPass = 0) const;
 
   // Lights per additive pass: about kEvaluationsPerPass light evaluations per draw, so no
   // single draw runs long enough to trip a GPU watchdog, while the per-pass cost (reading
   // the G-buffer again) stays under 1% of the work.
   static int lightsPerPass(int pixels);
-  static constexpr long long kEvaluationsPerPass = 1ll << 26;
+  static constexpr long long kEvaluationsPerPass = 1ll << 28;
 
  private:
-  gl::Program program_;
+  // Compiles (once) and returns the program for `defines`. Throws gl::GlError.
+  const gl::Program& program(const std::vector<std::string>& defines) const;
+
+  mutable std::map<std::vector<std::string>, gl::Program> programs_;
 };
 
 }  // namespace manylight

@@ -22,6 +22,7 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   Renderer renderer(scene, lights, request.width, request.height, request.method);
   FrameSettings settings;
   settings.ambient = request.ambient;
+  settings.lightsPerPass = request.lightsPerPass;
   out.image = renderer.render(makeView(camera, request.width, request.height), settings, &out.frame);
   return out;
 }

@@ -14,6 +14,7 @@ struct RenderRequest {
   int camera = -1;  // index into Scene::cameras; −1: the first camera, or framing if none
   Method method = Method::Reference;
   glm::vec3 ambient{0.0f};
+  int lightsPerPass = 0;  // 0: automatic
 };
 
 struct RenderOutcome {

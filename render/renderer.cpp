@@ -81,7 +81,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   const auto start = std::chrono::steady_clock::now();
   geometryPass(view, settings);
   glBindVertexArray(emptyVao_.id());
-  const int passes = reference_.light(gpu_, gbuffer_, view);
+  const int passes = reference_.light(gpu_, gbuffer_, view, settings.lightsPerPass);
   glBindVertexArray(0);
   glFinish();
   const auto end = std::chrono::steady_clock::now();

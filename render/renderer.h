@@ -21,6 +21,7 @@ const char* methodName(Method m);
 
 struct FrameSettings {
   glm::vec3 ambient{0.0f};
+  int lightsPerPass = 0;  // 0: ReferenceMethod::lightsPerPass(pixels)
 };
 
 struct FrameStats {

@@ -59,8 +59,13 @@ TEST(LightPack, LayoutMatchesTheShadingModel) {
   Light sun;
   sun.type = LightType::Directional;
   sun.direction = {0.0f, 0.0f, -1.0f};
-  const std::vector<float> t = packLights({spot, sun});
-  ASSERT_EQ(t.size(), 2u * layout::kFloatsPerLight);
+  const PackedLights packed = packLights({spot, sun});
+  EXPECT_EQ(packed.pointStart, 1);  // directional first
+  EXPECT_EQ(packed.spotStart, 1);
+  const std::vector<float>& all = packed.texels;
+  ASSERT_EQ(all.size(), 2u * layout::kFloatsPerLight);
+  // The spot light is second: the directional one comes first.
+  const std::vector<float> t(all.begin() + layout::kFloatsPerLight, all.end());
   EXPECT_EQ(t[0], 1.0f);
   EXPECT_FLOAT_EQ(t[3], 1.0f / 16.0f);
   EXPECT_EQ(t[8], 2.0f);
@@ -69,7 +74,7 @@ TEST(LightPack, LayoutMatchesTheShadingModel) {
     const double x = std::clamp(c * t[7] + t[11], 0.0, 1.0);
     EXPECT_NEAR(x * x * (3 - 2 * x), shading::smoothstep(std::cos(0.6), std::cos(0.3), c), 1e-5);
   }
-  const float* d = &t[layout::kFloatsPerLight];
+  const float* d = &all[0];
   EXPECT_EQ(d[2], 1.0f);  // towards the light
   EXPECT_EQ(d[3], layout::kDirectionalMarker);
   EXPECT_EQ(d[7], 0.0f);
