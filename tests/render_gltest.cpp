@@ -15,11 +15,12 @@ struct Comparison {
   double maxRelative = 0.0;
 };
 
-// Tolerance: the GPU computes in float, the oracle in double. Over a few hundred lights
-// float sums and positions reconstructed from a float G-buffer stay within 1e-3 relative
-// of the exact value (measured: see the closing note of the foundation issue). Values under
-// 1e-3 are compared against 1e-3 instead, so near-black pixels don't turn rounding noise
-// into large relative errors.
+// Tolerance: the GPU computes in float, the oracle in double. Float sums over a thousand
+// lights and positions from a float G-buffer stay under 4e-4 relative (measured: 3e-5 for
+// one light, 3.7e-4 for 1,000 with specular); textures are stored as half floats (relative
+// error up to 2^-11 ≈ 4.9e-4 per texel), which brings textured pixels to 7.5e-4 (measured). 1e-3 covers both with a margin. Values under 1e-3 are
+// compared against 1e-3 instead, so near-black pixels don't turn rounding noise into large
+// relative errors.
 constexpr double kRelativeTolerance = 1e-3;
 constexpr double kFloor = 1e-3;
 // Interior pixels may still disagree where a triangle edge inside one surface meets a
@@ -58,6 +59,25 @@ Comparison compare(const Image& gpu, const OracleImage& oracle, const std::strin
   return c;
 }
 
+// Renders `request` on the GPU and with the oracle (using `lights`: the scene's, or the
+// rig the GPU used), compares them, and returns the GPU outcome for further checks.
+RenderOutcome expectMatchesOracle(const Scene& scene, const RenderRequest& request,
+                                  const std::string& name) {
+  const RenderOutcome gpu = renderScene(scene, request);
+  const Camera camera = resolveCamera(scene, request);
+  const std::vector<Light> lights = gpu.defaultRig ? defaultLightRig(camera) : scene.lights;
+  const OracleImage oracle = renderOracle(scene, camera, lights, request.width, request.height,
+                                          glm::dvec3(request.ambient));
+  const Comparison c = compare(gpu.image, oracle, name);
+  EXPECT_GT(c.compared, request.width * request.height / 2);
+  EXPECT_LE(c.failing, c.compared * kMaxFailingFraction)
+      << name << ": " << c.failing << " of " << c.compared << " pixels off; max relative error "
+      << c.maxRelative;
+  std::cout << name << ": max relative error " << c.maxRelative << " over " << c.compared
+            << " pixels\n";
+  return gpu;
+}
+
 struct OracleCase {
   const char* name;
   int lights;
@@ -82,16 +102,7 @@ TEST_P(OracleTest, ReferenceMatchesOracle) {
   request.height = 120;
   request.camera = p.camera;
   request.ambient = glm::vec3(0.02f, 0.03f, 0.04f);
-  const RenderOutcome gpu = renderScene(scene, request);
-  const OracleImage oracle = renderOracle(scene, resolveCamera(scene, request), scene.lights,
-                                          request.width, request.height, glm::dvec3(request.ambient));
-  const Comparison c = compare(gpu.image, oracle, p.name);
-  EXPECT_GT(c.compared, request.width * request.height / 2);
-  EXPECT_LE(c.failing, c.compared * kMaxFailingFraction)
-      << c.failing << " of " << c.compared << " pixels off; max relative error " << c.maxRelative;
-  RecordProperty("max_relative_error", std::to_string(c.maxRelative));
-  std::cout << p.name << ": max relative error " << c.maxRelative << " over " << c.compared
-            << " pixels\n";
+  expectMatchesOracle(scene, request, p.name);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -112,13 +123,9 @@ TEST(Render, DefaultRigLightsASceneWithoutLights) {
   RenderRequest request;
   request.width = 96;
   request.height = 72;
-  const RenderOutcome gpu = renderScene(scene, request);
+  const RenderOutcome gpu = expectMatchesOracle(scene, request, "default_rig");
   EXPECT_TRUE(gpu.defaultRig);
   EXPECT_EQ(gpu.lightCount, 3u);
-  const Camera camera = resolveCamera(scene, request);
-  const OracleImage oracle = renderOracle(scene, camera, defaultLightRig(camera), 96, 72);
-  const Comparison c = compare(gpu.image, oracle, "default_rig");
-  EXPECT_LE(c.failing, c.compared * kMaxFailingFraction) << "max relative " << c.maxRelative;
 }
 
 TEST(Render, FramingShowsTheWholeSceneWithoutCamera) {
@@ -140,7 +147,9 @@ TEST(Render, FramingShowsTheWholeSceneWithoutCamera) {
     for (int x = 0; x < 64; ++x) {
       const bool hit = out.image.pixel(x, y)[3] > 0.0f;
       covered += hit;
-      if (x == 0 || y == 0 || x == 63 || y == 63) EXPECT_FALSE(hit) << x << "," << y;
+      if (x == 0 || y == 0 || x == 63 || y == 63) {
+        EXPECT_FALSE(hit) << x << "," << y;
+      }
     }
   }
   EXPECT_GT(covered, 64 * 64 / 8);
@@ -150,7 +159,14 @@ TEST(Render, ManyPassesEqualTheOracle) {
   // Long light lists are split into additive passes; passes of 37 lights (an odd size, so
   // pass boundaries fall inside each light type's group) must add up to the exact image.
   context();
-  EXPECT_EQ(ReferenceMethod::lightsPerPass(640 * 480), int(ReferenceMethod::kEvaluationsPerPass / (640 * 480)));
+  // The automatic pass size keeps a pass under the evaluation bound and never below 1.
+  for (int pixels : {1, 160 * 120, 640 * 480, 16384 * 16384}) {
+    const int perPass = ReferenceMethod::lightsPerPass(pixels);
+    EXPECT_GE(perPass, 1);
+    if (perPass > 1) {
+      EXPECT_LE(double(perPass) * pixels, double(ReferenceMethod::kEvaluationsPerPass));
+    }
+  }
   RoomOptions o;
   o.lightCount = 1000;
   const Scene scene = loadGltf(roomScene(o));
@@ -158,11 +174,8 @@ TEST(Render, ManyPassesEqualTheOracle) {
   request.width = 160;
   request.height = 120;
   request.lightsPerPass = 37;
-  const RenderOutcome gpu = renderScene(scene, request);
+  const RenderOutcome gpu = expectMatchesOracle(scene, request, "many_passes");
   EXPECT_EQ(gpu.frame.lightingPasses, (1000 + 36) / 37);
-  const OracleImage oracle = renderOracle(scene, resolveCamera(scene, request), scene.lights, 160, 120);
-  const Comparison c = compare(gpu.image, oracle, "many_passes");
-  EXPECT_LE(c.failing, c.compared * kMaxFailingFraction) << "max relative " << c.maxRelative;
 }
 
 }  // namespace
