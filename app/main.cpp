@@ -80,14 +80,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
     std::cerr << "manylight: using " << context->backend() << ", " << context->renderer() << ", "
               << context->version() << "\n";
   }
-  RenderOutcome out;
-  try {
-    out = renderScene(scene, request);
-  } catch (const gl::GlError&) {
-    throw;
-  } catch (const Error& e) {
-    throw Error(a.scene + ": " + e.what());
-  }
+  const RenderOutcome out = renderScene(scene, request);
   if (out.framed && a.verbose) std::cerr << "manylight: " << a.scene << ": no camera; framing the bounds\n";
   if (out.defaultRig) {
     std::cerr << "manylight: " << a.scene << ": no lights; using the default three-light rig\n";

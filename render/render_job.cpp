@@ -4,7 +4,7 @@ namespace manylight {
 
 Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* framed) {
   if (request.camera >= int(scene.cameras.size())) {
-    throw Error("camera " + std::to_string(request.camera) + " does not exist (the scene has " +
+    throw Error(scene.name + ": camera " + std::to_string(request.camera) + " does not exist (the scene has " +
                 std::to_string(scene.cameras.size()) + ")");
   }
   if (framed) *framed = scene.cameras.empty();

@@ -25,7 +25,8 @@ struct RenderOutcome {
   std::size_t lightCount = 0;
 };
 
-// The camera a request resolves to. Throws Error for a camera index the scene lacks.
+// The camera a request resolves to. Throws Error ("SCENE: camera N does not exist ...") for a
+// camera index the scene lacks.
 Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* framed = nullptr);
 
 // Renders with the current context. Throws Error (bad request) or gl::GlError.

@@ -77,12 +77,29 @@ int nodeLight(const tinygltf::Node& node) {
 }
 
 void checkVersion(const std::string& version, const std::string& minVersion,
-                  const std::vector<std::string>& required);
+                  const std::vector<std::string>& required) {
+  auto major = [](const std::string& v) { return std::atoi(v.c_str()); };
+  auto minor = [](const std::string& v) {
+    const auto dot = v.find('.');
+    return dot == std::string::npos ? 0 : std::atoi(v.c_str() + dot + 1);
+  };
+  if (major(version) != 2) {
+    throw SceneError("asset.version '" + version + "' is not supported, expected 2.x");
+  }
+  if (!minVersion.empty() && (major(minVersion) != 2 || minor(minVersion) > 0)) {
+    throw SceneError("asset.minVersion " + minVersion + " is not supported, expected 2.0");
+  }
+  for (const std::string& ext : required) {
+    if (!kSupportedRequired.count(ext)) {
+      throw SceneError("required extension " + ext + " is not supported");
+    }
+  }
+}
 
-// Reads asset.version, asset.minVersion and extensionsRequired from a .gltf's JSON before
-// tinygltf parses the rest, so a file that needs something we lack (Draco, a newer version)
-// is refused for that reason rather than for a symptom of it.
-void precheckJson(const std::string& path) {
+// Called when tinygltf fails on a .gltf: reads asset.version, asset.minVersion and
+// extensionsRequired from the JSON, so a file that needs something we lack (Draco, a newer
+// version) is refused for that reason rather than for the parse error it causes.
+void checkRequirementsInJson(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   const nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return;  // tinygltf reports the syntax error
@@ -100,30 +117,6 @@ void precheckJson(const std::string& path) {
     }
   }
   checkVersion(str(*asset, "version"), str(*asset, "minVersion"), required);
-}
-
-void checkVersion(const tinygltf::Model& model) {
-  checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
-}
-
-void checkVersion(const std::string& version, const std::string& mv,
-                  const std::vector<std::string>& required) {
-  auto major = [](const std::string& v) { return std::atoi(v.c_str()); };
-  auto minor = [](const std::string& v) {
-    const auto dot = v.find('.');
-    return dot == std::string::npos ? 0 : std::atoi(v.c_str() + dot + 1);
-  };
-  if (major(version) != 2) {
-    throw SceneError("asset.version '" + version + "' is not supported, expected 2.x");
-  }
-  if (!mv.empty() && (major(mv) != 2 || minor(mv) > 0)) {
-    throw SceneError("asset.minVersion " + mv + " is not supported, expected 2.0");
-  }
-  for (const std::string& ext : required) {
-    if (!kSupportedRequired.count(ext)) {
-      throw SceneError("required extension " + ext + " is not supported");
-    }
-  }
 }
 
 // Walks the node hierarchy of the default scene, placing meshes, lights and cameras.
@@ -251,22 +244,25 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
       if (!probe) throw SceneError(std::string("cannot open: ") + std::strerror(errno));
     }
     const bool binary = isBinaryGltf(path);
-    if (!binary) precheckJson(path);
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(decodeImageForTinygltf, nullptr);
     tinygltf::Model model;
     std::string err, warn;
-    bool ok = false;
+    std::string failure;
     try {
-      ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
-                  : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+      const bool ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
+                             : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+      if (!ok) failure = oneLine(err.empty() ? "not a valid glTF file" : err);
     } catch (const std::bad_alloc&) {
-      throw SceneError("out of memory while parsing: a size in the file is too large");
+      failure = "out of memory while parsing: a size in the file is too large";
     } catch (const std::exception& e) {
-      throw SceneError(oneLine(e.what()));
+      failure = oneLine(e.what());
     }
-    if (!ok) throw SceneError(oneLine(err.empty() ? "not a valid glTF file" : err));
-    checkVersion(model);
+    if (!failure.empty()) {
+      if (!binary) checkRequirementsInJson(path);  // throws when the real reason is a requirement
+      throw SceneError(failure);
+    }
+    checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
     gltf::Converter convert(model, scene);
     SceneWalker(model, scene, convert, options).walk();
   } catch (const SceneError& e) {

@@ -166,7 +166,9 @@ TEST(Cli, BadInputsFailWithOneLineAndNoOutput) {
     EXPECT_EQ(r.exitCode, 1);
     const std::string prefix = "manylight: " + path.string() + ": ";
     EXPECT_EQ(r.err.rfind(prefix, 0), 0u) << r.err;
-    if (*b.message) EXPECT_EQ(r.err, prefix + b.message + "\n");
+    if (*b.message) {
+      EXPECT_EQ(r.err, prefix + b.message + "\n");
+    }
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(out));
     EXPECT_EQ(std::distance(fs::directory_iterator(testFolder()), fs::directory_iterator()),
