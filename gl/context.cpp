@@ -1,7 +1,5 @@
 #include "gl/context.h"
 
-#include <cstdio>
-
 #include "gl/api.h"
 
 namespace manylight::gl {

@@ -17,23 +17,30 @@ vec3 directionalIrradiance(int i, vec3 n, out vec3 l) {
   return c.rgb * max(dot(n, l), 0.0);
 }
 
-// Irradiance at p from point light i (falloff 1/d², range window), and l.
-vec3 pointIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
-  vec4 a = texelFetch(uLights, 3 * i);
-  vec4 c = texelFetch(uLights, 3 * i + 2);
+// cos θ · window / d² at p for a light at a.xyz with a.w = 1/range², and the unit vector l.
+float pointFalloff(vec4 a, vec3 p, vec3 n, out vec3 l) {
   vec3 toLight = a.xyz - p;
   float d2 = max(dot(toLight, toLight), kMinDistanceSquared);
   float invD = inversesqrt(d2);
   l = toLight * invD;
   float x = d2 * a.w;  // (d / range)², 0 without range
   float window = clamp(1.0 - x * x, 0.0, 1.0);
-  return c.rgb * (max(dot(n, l), 0.0) * window * window * invD * invD);
+  return max(dot(n, l), 0.0) * window * window * invD * invD;
+}
+
+// Irradiance at p from point light i, and l.
+vec3 pointIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
+  vec4 a = texelFetch(uLights, 3 * i);
+  vec4 c = texelFetch(uLights, 3 * i + 2);
+  return c.rgb * pointFalloff(a, p, n, l);
 }
 
 // Irradiance at p from spot light i: the point light's, times the cone's smoothstep.
 vec3 spotIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
-  vec3 e = pointIrradiance(i, p, n, l);
+  vec4 a = texelFetch(uLights, 3 * i);
   vec4 b = texelFetch(uLights, 3 * i + 1);
-  float t = clamp(dot(-l, b.xyz) * b.w + texelFetch(uLights, 3 * i + 2).w, 0.0, 1.0);
-  return e * (t * t * (3.0 - 2.0 * t));
+  vec4 c = texelFetch(uLights, 3 * i + 2);
+  float falloff = pointFalloff(a, p, n, l);
+  float t = clamp(dot(-l, b.xyz) * b.w + c.w, 0.0, 1.0);
+  return c.rgb * (falloff * t * t * (3.0 - 2.0 * t));
 }

@@ -1,5 +1,7 @@
 #include "render/gbuffer.h"
 
+#include <cstdio>
+
 #include "gl/context.h"
 
 namespace manylight {
@@ -18,9 +20,10 @@ void allocate(const gl::Texture& t, GLint internal, GLenum format, GLenum type, 
 void checkComplete(const char* which) {
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
-    throw gl::GlError(std::string(which) + " framebuffer is incomplete (status 0x" +
-                      [&] { char b[16]; std::snprintf(b, sizeof b, "%04X", status); return std::string(b); }() +
-                      ")");
+    char message[96];
+    std::snprintf(message, sizeof message, "%s framebuffer is incomplete (status 0x%04X)", which,
+                  unsigned(status));
+    throw gl::GlError(message);
   }
 }
 

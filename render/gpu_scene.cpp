@@ -6,6 +6,7 @@
 #include "bake/light_texture_layout.h"
 #include "gl/context.h"
 #include "render/image.h"
+#include "scene/shading_model.h"
 
 namespace manylight {
 
@@ -83,10 +84,11 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
     for (const GpuPrimitive& g : meshes_[inst.mesh]) {
       if (g.material >= 0) {
         const Material& m = scene.materials[g.material];
-        hasSpecular_ = hasSpecular_ || !(m.metallic <= 0.0f && m.roughness >= 1.0f);
+        hasSpecular_ = hasSpecular_ || shading::hasSpecularTerm(m.metallic, m.roughness);
       }
+      const glm::mat3 linear(inst.world);
       draws_.push_back({&g.vao, g.indexCount, g.hasTexcoords, g.hasColours, g.material, inst.world,
-                        glm::determinant(glm::mat3(inst.world)) < 0.0f});
+                        glm::transpose(glm::inverse(linear)), glm::determinant(linear) < 0.0f});
     }
   }
 

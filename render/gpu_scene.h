@@ -20,7 +20,8 @@ class GpuScene {
     bool hasTexcoords, hasColours;
     int material;  // −1: default material
     glm::mat4 model;
-    bool mirrored;  // negative determinant
+    glm::mat3 normalMatrix;  // inverse transpose of the model's upper 3×3
+    bool mirrored;           // negative determinant
   };
   const std::vector<Draw>& draws() const { return draws_; }
   const gl::Texture* texture(int index) const { return &textures_[index]; }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -24,7 +25,13 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
       gpu_(scene, lights),
       gbuffer_(width, height),
       geometry_("gbuffer.vert", "gbuffer.frag", {},
-                {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"}) {}
+                {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"}) {
+  const gl::Program& p = geometry_;
+  uniforms_ = {p.uniform("uViewProjection"), p.uniform("uAmbient"), p.uniform("uBaseColorTexture"),
+               p.uniform("uModel"), p.uniform("uNormalMatrix"), p.uniform("uBaseColorFactor"),
+               p.uniform("uMetallic"), p.uniform("uRoughness"), p.uniform("uEmissive"),
+               p.uniform("uHasTexture"), p.uniform("uDoubleSided"), p.uniform("uMirrored")};
+}
 
 void Renderer::geometryPass(const View& view, const FrameSettings& settings) {
   glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_.geometryFramebuffer().id());
@@ -40,25 +47,25 @@ void Renderer::geometryPass(const View& view, const FrameSettings& settings) {
 
   geometry_.use();
   const glm::mat4 viewProjection = view.projection * view.view;
-  glUniformMatrix4fv(geometry_.uniform("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-  glUniform3fv(geometry_.uniform("uAmbient"), 1, glm::value_ptr(settings.ambient));
-  glUniform1i(geometry_.uniform("uBaseColorTexture"), 0);
+  const GeometryUniforms& u = uniforms_;
+  glUniformMatrix4fv(u.viewProjection, 1, GL_FALSE, glm::value_ptr(viewProjection));
+  glUniform3fv(u.ambient, 1, glm::value_ptr(settings.ambient));
+  glUniform1i(u.baseColorTexture, 0);
   glActiveTexture(GL_TEXTURE0);
   const Material fallback = defaultMaterial();
   for (const GpuScene::Draw& d : gpu_.draws()) {
     const Material& m = d.material >= 0 ? scene_.materials[d.material] : fallback;
-    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
-    glUniformMatrix4fv(geometry_.uniform("uModel"), 1, GL_FALSE, glm::value_ptr(d.model));
-    glUniformMatrix3fv(geometry_.uniform("uNormalMatrix"), 1, GL_FALSE, glm::value_ptr(normalMatrix));
-    glUniform4fv(geometry_.uniform("uBaseColorFactor"), 1, glm::value_ptr(m.baseColorFactor));
-    glUniform1f(geometry_.uniform("uMetallic"), m.metallic);
-    glUniform1f(geometry_.uniform("uRoughness"), m.roughness);
-    glUniform3fv(geometry_.uniform("uEmissive"), 1, glm::value_ptr(m.emissive));
+    glUniformMatrix4fv(u.model, 1, GL_FALSE, glm::value_ptr(d.model));
+    glUniformMatrix3fv(u.normalMatrix, 1, GL_FALSE, glm::value_ptr(d.normalMatrix));
+    glUniform4fv(u.baseColorFactor, 1, glm::value_ptr(m.baseColorFactor));
+    glUniform1f(u.metallic, m.metallic);
+    glUniform1f(u.roughness, m.roughness);
+    glUniform3fv(u.emissive, 1, glm::value_ptr(m.emissive));
     const bool textured = m.baseColorTexture >= 0 && d.hasTexcoords;
-    glUniform1i(geometry_.uniform("uHasTexture"), textured ? 1 : 0);
+    glUniform1i(u.hasTexture, textured ? 1 : 0);
     if (textured) glBindTexture(GL_TEXTURE_2D, gpu_.texture(m.baseColorTexture)->id());
-    glUniform1i(geometry_.uniform("uDoubleSided"), m.doubleSided ? 1 : 0);
-    glUniform1i(geometry_.uniform("uMirrored"), d.mirrored ? 1 : 0);
+    glUniform1i(u.doubleSided, m.doubleSided ? 1 : 0);
+    glUniform1i(u.mirrored, d.mirrored ? 1 : 0);
     if (m.doubleSided) {
       glDisable(GL_CULL_FACE);
     } else {
@@ -96,7 +103,9 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR) {
-    throw gl::GlError("OpenGL error 0x" + std::to_string(error) + " while rendering");
+    char message[64];
+    std::snprintf(message, sizeof message, "OpenGL error 0x%04X while rendering", unsigned(error));
+    throw gl::GlError(message);
   }
   // GL's rows run bottom-up; images run top-down.
   image.rgba.resize(rows.size());

@@ -42,10 +42,17 @@ class Renderer {
  private:
   void geometryPass(const View& view, const FrameSettings& settings);
 
+  // Uniform locations of the G-buffer program, looked up once.
+  struct GeometryUniforms {
+    GLint viewProjection, ambient, baseColorTexture, model, normalMatrix, baseColorFactor,
+        metallic, roughness, emissive, hasTexture, doubleSided, mirrored;
+  };
+
   const Scene& scene_;
   GpuScene gpu_;
   GBuffer gbuffer_;
   gl::Program geometry_;
+  GeometryUniforms uniforms_;
   ReferenceMethod reference_;
   gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
 };

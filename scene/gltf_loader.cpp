@@ -12,7 +12,6 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "scene/error.h"
-#include "scene/gltf_accessors.h"
 #include "scene/gltf_convert.h"
 #include "scene/image_decode.h"
 

@@ -4,7 +4,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <random>
 
 #include <unistd.h>
 
@@ -19,8 +18,6 @@ namespace manylight {
 struct GltfBuilder::Impl {
   tinygltf::Model model;
   std::vector<unsigned char> bytes;
-  int boxMesh = -1, planeMesh = -1;
-  std::vector<int> sphereMeshes;  // by material, lazily
 
   int addView(const void* data, std::size_t size, int target) {
     while (bytes.size() % 4) bytes.push_back(0);
@@ -183,7 +180,7 @@ int GltfBuilder::addBox(glm::vec3 centre, glm::vec3 size, int material, glm::vec
       idx.insert(idx.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     }
   }
-  // Per-material meshes keep each primitive's material fixed.
+  // Each shape gets its own mesh, so each primitive keeps its own material.
   const int mesh = impl_->addMesh(pos, nrm, uv, idx, material);
   return impl_->addNode(mesh, centre, size, rotation);
 }

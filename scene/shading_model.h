@@ -63,6 +63,12 @@ inline PhongMaterial phongFromMetallicRoughness(glm::dvec3 baseColour, double me
   return m;
 }
 
+// Whether phongFromMetallicRoughness gives a non-zero specular colour (for any non-black
+// base colour): everything but a fully rough dielectric.
+inline bool hasSpecularTerm(double metallic, double roughness) {
+  return std::clamp(metallic, 0.0, 1.0) > 0.0 || std::clamp(roughness, 0.0, 1.0) < 1.0;
+}
+
 inline double smoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / std::max(e1 - e0, kMinConeWidth), 0.0, 1.0);
   return t * t * (3.0 - 2.0 * t);
