@@ -39,30 +39,30 @@ int ReferenceMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const 
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
-  const gl::Program& program_ = program(variant(scene));
-  program_.use();
+  const gl::Program& shader = program(variant(scene));
+  shader.use();
   const GBuffer::Target inputs[] = {GBuffer::kPosition, GBuffer::kNormal, GBuffer::kAlbedo,
                                     GBuffer::kSpecular};
   const char* names[] = {"uPosition", "uNormal", "uAlbedo", "uSpecular"};
   for (int i = 0; i < 4; ++i) {
     glActiveTexture(GL_TEXTURE0 + i);
     glBindTexture(GL_TEXTURE_2D, gbuffer.target(inputs[i]).id());
-    glUniform1i(program_.uniform(names[i]), i);
+    glUniform1i(shader.uniform(names[i]), i);
   }
   glActiveTexture(GL_TEXTURE4);
   glBindTexture(GL_TEXTURE_BUFFER, scene.lightTexture().id());
-  glUniform1i(program_.uniform("uLights"), 4);
-  glUniform3fv(program_.uniform("uEye"), 1, glm::value_ptr(view.eye));
-  glUniform3fv(program_.uniform("uForward"), 1, glm::value_ptr(view.forward));
-  glUniform1i(program_.uniform("uOrthographic"), view.orthographic ? 1 : 0);
-  glUniform1i(program_.uniform("uPointStart"), scene.pointStart());
-  glUniform1i(program_.uniform("uSpotStart"), scene.spotStart());
+  glUniform1i(shader.uniform("uLights"), 4);
+  glUniform3fv(shader.uniform("uEye"), 1, glm::value_ptr(view.eye));
+  glUniform3fv(shader.uniform("uForward"), 1, glm::value_ptr(view.forward));
+  glUniform1i(shader.uniform("uOrthographic"), view.orthographic ? 1 : 0);
+  glUniform1i(shader.uniform("uPointStart"), scene.pointStart());
+  glUniform1i(shader.uniform("uSpotStart"), scene.spotStart());
 
   if (perPass <= 0) perPass = lightsPerPass(gbuffer.width() * gbuffer.height());
   int passes = 0;
   for (int first = 0; first < scene.lightCount(); first += perPass) {
-    glUniform1i(program_.uniform("uFirstLight"), first);
-    glUniform1i(program_.uniform("uLightCount"), std::min(perPass, scene.lightCount() - first));
+    glUniform1i(shader.uniform("uFirstLight"), first);
+    glUniform1i(shader.uniform("uLightCount"), std::min(perPass, scene.lightCount() - first));
     glDrawArrays(GL_TRIANGLES, 0, 3);
     ++passes;
   }
