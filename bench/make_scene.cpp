@@ -9,7 +9,7 @@
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: manylight_make_scene OUT.gltf|OUT.glb LIGHTS [SEED] [--point-only] [--specular]\n");
+    std::fprintf(stderr, "usage: manylight_make_scene OUT.gltf|OUT.glb LIGHTS [SEED] [--point-only] [--specular] [--untextured]\n");
     return 2;
   }
   manylight::RoomOptions o;
@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--point-only") o.mix = false;
     if (a == "--specular") o.specular = true;
+    if (a == "--untextured") o.textured = false;
   }
   try {
     manylight::writeRoomScene(argv[1], o);

@@ -4,9 +4,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include <OpenImageIO/imageio.h>
-
 #include "render/output_file.h"
+#include "scene/image_io.h"
 
 namespace manylight {
 
@@ -36,42 +35,25 @@ void writeImage(const Image& image, const std::string& path, float exposure) {
   const std::string ext = target.extension().string();
   checkOutputPath(path);
   const bool png = ext == ".png" || ext == ".PNG";
-  const bool exr = !png;
   const fs::path tmp = prepareTemporaryFor(target);
   const double scale = std::exp2(double(exposure));
   const std::size_t n = std::size_t(image.width) * image.height;
   bool ok = false;
   std::string reason;
-  {
-    auto out = OIIO::ImageOutput::create(tmp.string());
-    if (out) {
-      OIIO::ImageSpec spec(image.width, image.height, 4, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
-      spec.attribute("oiio:ColorSpace", png ? "sRGB" : "Linear");
-      if (exr) spec.attribute("compression", "zip");
-      // No capture date: reruns must produce bit-identical files.
-      spec.attribute("DateTime", "");
-      if (out->open(tmp.string(), spec)) {
-        if (png) {
-          std::vector<std::uint8_t> codes(n * 4);
-          for (std::size_t i = 0; i < n * 4; ++i) {
-            // Alpha is coverage, not a colour: linear, not encoded.
-            codes[i] = (i % 4 == 3) ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
-                                    : encodeSrgb8(image.rgba[i] * scale);
-          }
-          ok = out->write_image(OIIO::TypeDesc::UINT8, codes.data());
-        } else {
-          std::vector<float> scaled(image.rgba);
-          for (std::size_t i = 0; i < n * 4; ++i) {
-            if (i % 4 != 3) scaled[i] = float(scaled[i] * scale);
-          }
-          ok = out->write_image(OIIO::TypeDesc::FLOAT, scaled.data());
-        }
-        ok = out->close() && ok;
-      }
-      if (!ok) reason = out->geterror();
-    } else {
-      reason = OIIO::geterror();
+  if (png) {
+    RawImage<std::uint8_t> codes{image.width, image.height, 4, std::vector<std::uint8_t>(n * 4)};
+    for (std::size_t i = 0; i < n * 4; ++i) {
+      // Alpha is coverage, not a colour: linear, not encoded.
+      codes.pixels[i] = (i % 4 == 3) ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
+                                     : encodeSrgb8(image.rgba[i] * scale);
     }
+    ok = imageIo().writeSrgb8(tmp.c_str(), codes, &reason);
+  } else {
+    RawImage<float> scaled{image.width, image.height, 4, image.rgba};
+    for (std::size_t i = 0; i < n * 4; ++i) {
+      if (i % 4 != 3) scaled.pixels[i] = float(scaled.pixels[i] * scale);
+    }
+    ok = imageIo().writeLinearFloat(tmp.c_str(), scaled, &reason);
   }
   if (ok) return commitTemporary(tmp, target);
   std::error_code ec;
@@ -80,20 +62,17 @@ void writeImage(const Image& image, const std::string& path, float exposure) {
 }
 
 Image readImage(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw ImageError(path + ": cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  Image img;
-  img.width = spec.width;
-  img.height = spec.height;
-  const int channels = spec.nchannels;
-  std::vector<float> raw(std::size_t(spec.width) * spec.height * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data())) {
-    throw ImageError(path + ": cannot read image: " + in->geterror());
+  RawImage<float> raw;
+  std::string reason;
+  if (!imageIo().readFloat(path.c_str(), &raw, &reason)) {
+    throw ImageError(path + ": cannot read image: " + reason);
   }
+  Image img;
+  img.width = raw.width;
+  img.height = raw.height;
   img.rgba.assign(std::size_t(img.width) * img.height * 4, 1.0f);
   for (std::size_t i = 0, n = std::size_t(img.width) * img.height; i < n; ++i) {
-    for (int c = 0; c < std::min(channels, 4); ++c) img.rgba[i * 4 + c] = raw[i * channels + c];
+    for (int c = 0; c < std::min(raw.channels, 4); ++c) img.rgba[i * 4 + c] = raw.pixels[i * raw.channels + c];
   }
   return img;
 }

@@ -2,44 +2,33 @@
 
 #include <cstring>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include "scene/error.h"
+#include "scene/image_io.h"
 
 namespace manylight {
 
 DecodedImage decodeImage(const unsigned char* bytes, std::size_t size, const std::string& what) {
-  namespace oiio = OIIO;
-  // OpenImageIO picks the reader from the name; choose it from the magic number.
-  std::string name = "image";
+  // OpenImageIO picks the reader from a file extension; choose it from the magic number.
+  const char* extension = nullptr;
   if (size >= 8 && std::memcmp(bytes, "\x89PNG", 4) == 0) {
-    name += ".png";
+    extension = ".png";
   } else if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) {
-    name += ".jpg";
+    extension = ".jpg";
   } else {
     throw SceneError(what + ": not a PNG or JPEG image");
   }
-  oiio::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes), size);
-  auto in = oiio::ImageInput::open(name, nullptr, &reader);
-  if (!in) {
-    throw SceneError(what + ": cannot decode image: " + oiio::geterror());
+  RawImage<std::uint8_t> raw;
+  std::string error;
+  if (!imageIo().decode8(bytes, size, extension, &raw, &error)) {
+    throw SceneError(what + ": cannot decode image: " + error);
   }
-  const oiio::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1) {
-    throw SceneError(what + ": image has no pixels");
-  }
-  const int channels = std::min(spec.nchannels, 4);
-  std::vector<std::uint8_t> raw(std::size_t(spec.width) * spec.height * channels);
-  if (!in->read_image(0, 0, 0, channels, oiio::TypeDesc::UINT8, raw.data())) {
-    throw SceneError(what + ": cannot decode image: " + in->geterror());
-  }
+  const int channels = std::min(raw.channels, 4);
   DecodedImage img;
-  img.width = spec.width;
-  img.height = spec.height;
+  img.width = raw.width;
+  img.height = raw.height;
   img.rgba.resize(std::size_t(img.width) * img.height * 4);
   for (std::size_t i = 0, n = std::size_t(img.width) * img.height; i < n; ++i) {
-    const std::uint8_t* s = &raw[i * channels];
+    const std::uint8_t* s = &raw.pixels[i * raw.channels];
     std::uint8_t* d = &img.rgba[i * 4];
     if (channels >= 3) {
       d[0] = s[0], d[1] = s[1], d[2] = s[2];

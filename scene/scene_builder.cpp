@@ -8,10 +8,10 @@
 #include <unistd.h>
 
 #include <glm/gtc/quaternion.hpp>
-#include <OpenImageIO/imageio.h>
 #include <tiny_gltf.h>
 
 #include "scene/error.h"
+#include "scene/image_io.h"
 
 namespace manylight {
 
@@ -127,20 +127,10 @@ int GltfBuilder::addMaterial(const BuilderMaterial& m) {
   mat.emissiveFactor = {m.emissive.r, m.emissive.g, m.emissive.b};
   mat.doubleSided = m.doubleSided;
   if (!m.textureRgba.empty()) {
-    // Encode PNG through OpenImageIO via a temporary file, then embed its bytes.
-    const std::filesystem::path tmp =
-        std::filesystem::temp_directory_path() /
-        ("manylight-builder-" + std::to_string(::getpid()) + "-" +
-         std::to_string(impl_->model.images.size()) + ".png");
-    auto out = OIIO::ImageOutput::create(tmp.string());
-    const OIIO::ImageSpec spec(m.textureWidth, m.textureHeight, 4, OIIO::TypeDesc::UINT8);
-    if (!out || !out->open(tmp.string(), spec) ||
-        !out->write_image(OIIO::TypeDesc::UINT8, m.textureRgba.data()) || !out->close()) {
-      throw SceneError(tmp.string() + ": cannot encode texture: " + OIIO::geterror());
-    }
-    std::ifstream f(tmp, std::ios::binary);
-    std::vector<unsigned char> png((std::istreambuf_iterator<char>(f)), {});
-    std::filesystem::remove(tmp);
+    const RawImage<std::uint8_t> pixels{m.textureWidth, m.textureHeight, 4, m.textureRgba};
+    std::vector<unsigned char> png;
+    std::string error;
+    if (!imageIo().encodePng8(pixels, &png, &error)) throw SceneError("cannot encode texture: " + error);
     tinygltf::Image img;
     img.bufferView = impl_->addView(png.data(), png.size(), 0);
     img.mimeType = "image/png";

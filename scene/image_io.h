@@ -1,0 +1,12 @@
+#pragma once
+// Image file I/O, loaded at run time from libmanylight_imageio.so beside the executable
+// (the reasons are in scene/image_io_module.h).
+#include "scene/image_io_module.h"
+
+namespace manylight {
+
+// The module's functions, loading it on first use. Throws Error naming the module when it
+// cannot be loaded.
+const ImageIoApi& imageIo();
+
+}  // namespace manylight

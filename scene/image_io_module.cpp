@@ -1,0 +1,84 @@
+// libmanylight_imageio.so: image files through OpenImageIO (see image_io_module.h).
+#include "scene/image_io_module.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+namespace manylight {
+namespace {
+
+bool fail(std::string* error, const std::string& reason) {
+  *error = reason.empty() ? "unknown error" : reason;
+  return false;
+}
+
+bool decode8(const unsigned char* bytes, std::size_t size, const char* extension,
+             RawImage<std::uint8_t>* out, std::string* error) {
+  OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes), size);
+  auto in = OIIO::ImageInput::open(std::string("image") + extension, nullptr, &reader);
+  if (!in) return fail(error, OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1) {
+    return fail(error, "image has no pixels");
+  }
+  out->width = spec.width;
+  out->height = spec.height;
+  out->channels = spec.nchannels;
+  out->pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, out->pixels.data())) {
+    return fail(error, in->geterror());
+  }
+  return true;
+}
+
+// Writes `image` to `path`, or into `proxy` when one is given (`path` then names the format).
+template <typename T>
+bool write(const char* path, const RawImage<T>& image, OIIO::TypeDesc type, const char* colourSpace,
+           std::string* error, OIIO::Filesystem::IOProxy* proxy = nullptr) {
+  auto out = OIIO::ImageOutput::create(path, proxy);
+  if (!out) return fail(error, OIIO::geterror());
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
+  spec.attribute("oiio:ColorSpace", colourSpace);
+  if (type == OIIO::TypeDesc::FLOAT) spec.attribute("compression", "zip");
+  // No capture date: reruns must produce bit-identical files.
+  spec.attribute("DateTime", "");
+  bool ok = out->open(path, spec) && out->write_image(type, image.pixels.data());
+  ok = out->close() && ok;
+  return ok ? true : fail(error, out->geterror());
+}
+
+bool encodePng8(const RawImage<std::uint8_t>& image, std::vector<unsigned char>* png, std::string* error) {
+  OIIO::Filesystem::IOVecOutput memory(*png);
+  return write("memory.png", image, OIIO::TypeDesc::UINT8, "sRGB", error, &memory);
+}
+
+bool writeSrgb8(const char* path, const RawImage<std::uint8_t>& image, std::string* error) {
+  return write(path, image, OIIO::TypeDesc::UINT8, "sRGB", error);
+}
+
+bool writeLinearFloat(const char* path, const RawImage<float>& image, std::string* error) {
+  return write(path, image, OIIO::TypeDesc::FLOAT, "Linear", error);
+}
+
+bool readFloat(const char* path, RawImage<float>* out, std::string* error) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return fail(error, OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  out->width = spec.width;
+  out->height = spec.height;
+  out->channels = spec.nchannels;
+  out->pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out->pixels.data())) {
+    return fail(error, in->geterror());
+  }
+  return true;
+}
+
+const ImageIoApi kApi = {ImageIoApi::kVersion, decode8, encodePng8, writeSrgb8, writeLinearFloat, readFloat};
+
+}  // namespace
+}  // namespace manylight
+
+extern "C" __attribute__((visibility("default"))) const manylight::ImageIoApi* manylight_imageio_api() {
+  return &manylight::kApi;
+}
