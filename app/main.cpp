@@ -39,7 +39,9 @@ glm::vec3 parseRgb(const std::string& s) {
 
 struct RenderArgs {
   std::string scene, output, size = "640x480", method = "reference", backend = "auto";
-  std::string ambient = "0,0,0", statsPath;
+  std::string ambient = "0,0,0", statsPath, errorMode = "node";
+  float error = 0.02f;
+  int maxCut = LightcutsSettings{}.maxCut;
   int camera = -1;
   float exposure = 0.0f;
   std::size_t lightBudget = 1u << 20;
@@ -57,6 +59,13 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.camera = a.camera;
   request.ambient = parseRgb(a.ambient);
   request.method = parseMethod(a.method);
+  request.lightcuts.error = a.error;
+  request.lightcuts.maxCut = a.maxCut;
+  if (a.errorMode != "node" && a.errorMode != "total") {
+    std::cerr << "manylight: --error-mode: expected node or total, got '" << a.errorMode << "'\n";
+    return kExitUsage;
+  }
+  request.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
   const gl::Backend backend = gl::parseBackend(a.backend);
   checkOutputPath(a.output);
 
@@ -104,6 +113,21 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
         {"render_ms", out.frame.renderMs},
         {"total_ms", msSince(processStart)},
     };
+    if (request.method != Method::Reference) {
+      const CutStats& c = out.frame.cuts;
+      stats["bake_ms"] = out.bakeMs;
+      stats["avg_cut_size"] = c.averageCut;
+      stats["max_cut_size"] = c.maxCut;
+      stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
+      stats["light_evaluations_per_pixel"] = c.lightEvaluations;
+      stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
+      stats["covered_pixels"] = c.pixels;
+      if (request.method == Method::Lightcuts) {
+        stats["error"] = request.lightcuts.error;
+        stats["error_mode"] = a.errorMode;
+      }
+      stats["max_cut"] = request.lightcuts.maxCut;
+    }
     writeTextFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
   if (a.verbose) {
@@ -128,8 +152,20 @@ int main(int argc, char** argv) {
   render->add_option("--camera", r.camera,
                      "Index of the glTF camera to use (default: the first; with none, frame the "
                      "scene's bounds from a 3/4 view)");
-  render->add_option("--method", r.method, "Lighting method: reference (every light at every pixel)")
+  render->add_option("--method", r.method,
+                     "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
+                     "cuts through a light tree), lightcuts-distance (cuts by radius of influence)")
       ->capture_default_str();
+  render->add_option("--error", r.error, "lightcuts: relative error ε of the stopping rule")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6f, 1.0f));
+  render->add_option("--error-mode", r.errorMode,
+                     "lightcuts: node (the paper's rule: each node's bound ≤ ε·estimate) or total "
+                     "(guaranteed: the sum of the cut's error bounds ≤ ε·estimate)")
+      ->capture_default_str();
+  render->add_option("--max-cut", r.maxCut, "lightcuts: most nodes in a pixel's cut")
+      ->capture_default_str()
+      ->check(CLI::Range(1, kMaxCutLimit));
   render->add_option("--backend", r.backend, "Context: auto (EGL device, EGL surfaceless, OSMesa), egl, osmesa")
       ->capture_default_str();
   render->add_option("--ambient", r.ambient, "Ambient radiance R,G,B, multiplied by the albedo")

@@ -8,21 +8,28 @@
 
 namespace manylight {
 
-PackedLights packLights(const std::vector<Light>& lights) {
-  PackedLights packed;
-  std::vector<const Light*> order;
-  order.reserve(lights.size());
+LightOrder lightOrder(const std::vector<Light>& lights) {
+  LightOrder order;
+  order.scene.reserve(lights.size());
   for (LightType type : {LightType::Directional, LightType::Point, LightType::Spot}) {
-    if (type == LightType::Point) packed.pointStart = int(order.size());
-    if (type == LightType::Spot) packed.spotStart = int(order.size());
-    for (const Light& l : lights) {
-      if (l.type == type) order.push_back(&l);
+    if (type == LightType::Point) order.pointStart = int(order.scene.size());
+    if (type == LightType::Spot) order.spotStart = int(order.scene.size());
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      if (lights[i].type == type) order.scene.push_back(int(i));
     }
   }
+  return order;
+}
+
+PackedLights packLights(const std::vector<Light>& lights) {
+  PackedLights packed;
+  const LightOrder order = lightOrder(lights);
+  packed.pointStart = order.pointStart;
+  packed.spotStart = order.spotStart;
   std::vector<float>& out = packed.texels;
   out.assign(lights.size() * layout::kFloatsPerLight, 0.0f);
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const Light& l = *order[i];
+  for (std::size_t i = 0; i < order.scene.size(); ++i) {
+    const Light& l = lights[order.scene[i]];
     float* t = &out[i * layout::kFloatsPerLight];
     const glm::vec3 radiant = l.colour * l.intensity;
     if (l.type == LightType::Directional) {

@@ -35,12 +35,31 @@ vec3 pointIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
   return c.rgb * pointFalloff(a, p, n, l);
 }
 
+// The spot cone's smoothstep for light direction l, from texel 1 (b) and the cone offset.
+float spotCone(vec4 b, float offset, vec3 l) {
+  float t = clamp(dot(-l, b.xyz) * b.w + offset, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
 // Irradiance at p from spot light i: the point light's, times the cone's smoothstep.
 vec3 spotIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
   vec4 a = texelFetch(uLights, 3 * i);
   vec4 b = texelFetch(uLights, 3 * i + 1);
   vec4 c = texelFetch(uLights, 3 * i + 2);
-  float falloff = pointFalloff(a, p, n, l);
-  float t = clamp(dot(-l, b.xyz) * b.w + c.w, 0.0, 1.0);
-  return c.rgb * (falloff * t * t * (3.0 - 2.0 * t));
+  return c.rgb * (pointFalloff(a, p, n, l) * spotCone(b, c.w, l));
+}
+
+// Irradiance per unit colour · intensity at p from light i of type `type` (0 directional,
+// 1 point, 2 spot), and l: what a light tree node's intensity multiplies.
+float unitIrradiance(int type, int i, vec3 p, vec3 n, out vec3 l) {
+  vec4 a = texelFetch(uLights, 3 * i);
+  if (type == 0) {
+    l = a.xyz;
+    return max(dot(n, l), 0.0);
+  }
+  float f = pointFalloff(a, p, n, l);
+  if (type == 2 && f > 0.0) {
+    f *= spotCone(texelFetch(uLights, 3 * i + 1), texelFetch(uLights, 3 * i + 2).w, l);
+  }
+  return f;
 }

@@ -4,6 +4,7 @@
 
 #include "bake/light_pack.h"
 #include "bake/light_texture_layout.h"
+#include "gl/texture_buffer.h"
 #include "gl/context.h"
 #include "render/image.h"
 #include "scene/shading_model.h"
@@ -94,25 +95,13 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
 
   // The light texture holds exactly the scene's lights (one zero light when there are none,
   // so the sampler is always complete).
-  GLint maxTexels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  const std::size_t texels = std::max<std::size_t>(lights.size(), 1) * layout::kTexelsPerLight;
-  if (texels > std::size_t(maxTexels)) {
-    throw gl::GlError(std::to_string(lights.size()) + " lights need " + std::to_string(texels) +
-                      " texels, the driver's texture buffers hold " + std::to_string(maxTexels));
-  }
   PackedLights packedLights = packLights(lights);
   std::vector<float>& packed = packedLights.texels;
+  const std::size_t texels = std::max<std::size_t>(lights.size(), 1) * layout::kTexelsPerLight;
   packed.resize(texels * 4, 0.0f);
   pointStart_ = packedLights.pointStart;
   spotStart_ = packedLights.spotStart;
-  glBindBuffer(GL_TEXTURE_BUFFER, lightBuffer_.id());
-  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(packed.size() * sizeof(float)), packed.data(),
-               GL_STATIC_DRAW);
-  glBindTexture(GL_TEXTURE_BUFFER, lightTexture_.id());
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, lightBuffer_.id());
-  glBindTexture(GL_TEXTURE_BUFFER, 0);
-  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  lightTexture_ = gl::uploadTextureBuffer(packed.data(), texels, GL_RGBA32F, std::to_string(lights.size()) + " lights");
   lightCount_ = int(lights.size());
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "gl/objects.h"
+#include "gl/texture_buffer.h"
 #include "scene/scene.h"
 
 namespace manylight {
@@ -25,7 +26,7 @@ class GpuScene {
   };
   const std::vector<Draw>& draws() const { return draws_; }
   const gl::Texture* texture(int index) const { return &textures_[index]; }
-  const gl::Texture& lightTexture() const { return lightTexture_; }
+  const gl::Texture& lightTexture() const { return lightTexture_.texture; }
   int lightCount() const { return lightCount_; }
   // Where point and spot lights start in the light texture (see light_texture_layout.h).
   int pointStart() const { return pointStart_; }
@@ -44,8 +45,7 @@ class GpuScene {
   std::vector<std::vector<GpuPrimitive>> meshes_;
   std::vector<gl::Texture> textures_;
   std::vector<Draw> draws_;
-  gl::Buffer lightBuffer_;
-  gl::Texture lightTexture_;
+  gl::TextureBuffer lightTexture_;
   int lightCount_ = 0, pointStart_ = 0, spotStart_ = 0;
   bool hasSpecular_ = false;
 };

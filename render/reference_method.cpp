@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include <glm/gtc/type_ptr.hpp>
+#include "render/lighting_inputs.h"
 
 namespace manylight {
 
@@ -27,38 +27,18 @@ const gl::Program& ReferenceMethod::program(const std::vector<std::string>& defi
 }
 
 int ReferenceMethod::lightsPerPass(int pixels) {
-  return int(std::clamp<long long>(kEvaluationsPerPass / std::max(pixels, 1), 1, 1 << 20));
+  return int(std::clamp<long long>(kEvaluationsPerPass / std::max(pixels, 1), 1, kMaxLightsPerPass));
 }
 
 int ReferenceMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
                            int perPass) const {
   glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.lightingFramebuffer().id());
-  glViewport(0, 0, gbuffer.width(), gbuffer.height());
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  glBlendFunc(GL_ONE, GL_ONE);
   const gl::Program& shader = program(variant(scene));
   shader.use();
-  const GBuffer::Target inputs[] = {GBuffer::kPosition, GBuffer::kNormal, GBuffer::kAlbedo,
-                                    GBuffer::kSpecular};
-  const char* names[] = {"uPosition", "uNormal", "uAlbedo", "uSpecular"};
-  for (int i = 0; i < 4; ++i) {
-    glActiveTexture(GL_TEXTURE0 + i);
-    glBindTexture(GL_TEXTURE_2D, gbuffer.target(inputs[i]).id());
-    glUniform1i(shader.uniform(names[i]), i);
-  }
-  glActiveTexture(GL_TEXTURE4);
-  glBindTexture(GL_TEXTURE_BUFFER, scene.lightTexture().id());
-  glUniform1i(shader.uniform("uLights"), 4);
-  glUniform3fv(shader.uniform("uEye"), 1, glm::value_ptr(view.eye));
-  glUniform3fv(shader.uniform("uForward"), 1, glm::value_ptr(view.forward));
-  glUniform1i(shader.uniform("uOrthographic"), view.orthographic ? 1 : 0);
-  glUniform1i(shader.uniform("uPointStart"), scene.pointStart());
-  glUniform1i(shader.uniform("uSpotStart"), scene.spotStart());
+  bindLightingInputs(shader, gbuffer, scene, view);
 
   if (perPass <= 0) perPass = lightsPerPass(gbuffer.width() * gbuffer.height());
+  perPass = std::min(perPass, kMaxLightsPerPass);
   int passes = 0;
   for (int first = 0; first < scene.lightCount(); first += perPass) {
     glUniform1i(shader.uniform("uFirstLight"), first);

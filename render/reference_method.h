@@ -30,6 +30,10 @@ class ReferenceMethod {
   // the G-buffer again) stays under 1% of the work.
   static int lightsPerPass(int pixels);
   static constexpr long long kEvaluationsPerPass = 1ll << 28;
+  // And at most this many lights: llvmpipe silently ends all loops of a shader invocation
+  // after 65,535 iterations in all (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and the light
+  // loops, unrolled by four, run a quarter as many iterations as lights (plus ≤ 3 per type).
+  static constexpr int kMaxLightsPerPass = 1 << 16;
 
  private:
   // Compiles (once) and returns the program for `defines`. Throws gl::GlError.

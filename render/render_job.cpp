@@ -23,6 +23,8 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   FrameSettings settings;
   settings.ambient = request.ambient;
   settings.lightsPerPass = request.lightsPerPass;
+  settings.lightcuts = request.lightcuts;
+  out.bakeMs = renderer.bakeMs();
   out.image = renderer.render(makeView(camera, request.width, request.height), settings, &out.frame);
   return out;
 }

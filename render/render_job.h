@@ -15,6 +15,7 @@ struct RenderRequest {
   Method method = Method::Reference;
   glm::vec3 ambient{0.0f};
   int lightsPerPass = 0;  // 0: automatic
+  LightcutsSettings lightcuts;
 };
 
 struct RenderOutcome {
@@ -23,6 +24,7 @@ struct RenderOutcome {
   bool framed = false;      // no camera: the thumbnail framing of scene/camera.h was used
   bool defaultRig = false;  // no lights: the default rig of scene/camera.h was used
   std::size_t lightCount = 0;
+  double bakeMs = 0.0;  // light trees built and uploaded (lightcuts methods)
 };
 
 // The camera a request resolves to. Throws Error ("SCENE: camera N does not exist ...") for a

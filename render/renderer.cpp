@@ -14,13 +14,21 @@ using namespace gl::api;
 
 Method parseMethod(const std::string& name) {
   if (name == "reference") return Method::Reference;
-  throw Error("unknown method '" + name + "', expected reference");
+  if (name == "lightcuts") return Method::Lightcuts;
+  if (name == "lightcuts-distance") return Method::LightcutsDistance;
+  throw Error("unknown method '" + name + "', expected reference, lightcuts or lightcuts-distance");
 }
 
-const char* methodName(Method) { return "reference"; }
+const char* methodName(Method m) {
+  switch (m) {
+    case Method::Lightcuts: return "lightcuts";
+    case Method::LightcutsDistance: return "lightcuts-distance";
+    default: return "reference";
+  }
+}
 
 Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-                   Method)
+                   Method method)
     : scene_(scene),
       gpu_(scene, lights),
       gbuffer_(width, height),
@@ -31,6 +39,14 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
                p.uniform("uModel"), p.uniform("uNormalMatrix"), p.uniform("uBaseColorFactor"),
                p.uniform("uMetallic"), p.uniform("uRoughness"), p.uniform("uEmissive"),
                p.uniform("uHasTexture"), p.uniform("uDoubleSided"), p.uniform("uMirrored")};
+  method_ = method;
+  if (method != Method::Reference) {
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    lightcuts_ = std::make_unique<LightcutsMethod>(lights, gbuffer_);
+    glFinish();
+    bakeMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
 }
 
 void Renderer::geometryPass(const View& view, const FrameSettings& settings) {
@@ -88,7 +104,14 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   const auto start = std::chrono::steady_clock::now();
   geometryPass(view, settings);
   glBindVertexArray(emptyVao_.id());
-  const int passes = reference_.light(gpu_, gbuffer_, view, settings.lightsPerPass);
+  int passes = 1;
+  if (lightcuts_) {
+    LightcutsSettings cuts = settings.lightcuts;
+    cuts.distance = method_ == Method::LightcutsDistance;
+    lightcuts_->light(gpu_, gbuffer_, view, cuts);
+  } else {
+    passes = reference_.light(gpu_, gbuffer_, view, settings.lightsPerPass);
+  }
   glBindVertexArray(0);
   glFinish();
   const auto end = std::chrono::steady_clock::now();
@@ -116,6 +139,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   if (stats) {
     stats->renderMs = std::chrono::duration<double, std::milli>(end - start).count();
     stats->lightingPasses = passes;
+    if (lightcuts_) stats->cuts = lightcuts_->cutStats();
   }
   return image;
 }

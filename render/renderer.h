@@ -8,25 +8,29 @@
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
 #include "render/image.h"
+#include "render/lightcuts_method.h"
 #include "render/reference_method.h"
 #include "scene/camera.h"
 
 namespace manylight {
 
-enum class Method { Reference };
+enum class Method { Reference, Lightcuts, LightcutsDistance };
 
-// "reference" → Method; throws Error naming the choices for anything else.
+// "reference", "lightcuts", "lightcuts-distance" → Method; throws Error naming the choices
+// for anything else.
 Method parseMethod(const std::string& name);
 const char* methodName(Method m);
 
 struct FrameSettings {
   glm::vec3 ambient{0.0f};
   int lightsPerPass = 0;  // 0: ReferenceMethod::lightsPerPass(pixels)
+  LightcutsSettings lightcuts;  // Method::Lightcuts (its `distance` follows the method)
 };
 
 struct FrameStats {
   double renderMs = 0.0;  // G-buffer + lighting passes, bracketed by glFinish
   int lightingPasses = 0;
+  CutStats cuts;  // lightcuts methods only
 };
 
 class Renderer {
@@ -35,6 +39,8 @@ class Renderer {
   // gl::GlError.
   Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
            Method method);
+  // Milliseconds spent building and uploading the light trees (lightcuts methods; else 0).
+  double bakeMs() const { return bakeMs_; }
 
   // Renders one frame seen through `view`. Throws gl::GlError on a driver error.
   Image render(const View& view, const FrameSettings& settings, FrameStats* stats = nullptr);
@@ -53,7 +59,10 @@ class Renderer {
   GBuffer gbuffer_;
   gl::Program geometry_;
   GeometryUniforms uniforms_;
+  Method method_;
   ReferenceMethod reference_;
+  std::unique_ptr<LightcutsMethod> lightcuts_;
+  double bakeMs_ = 0.0;
   gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
 };
 

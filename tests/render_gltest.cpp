@@ -178,6 +178,37 @@ TEST(Render, ManyPassesEqualTheOracle) {
   EXPECT_EQ(gpu.frame.lightingPasses, (1000 + 36) / 37);
 }
 
+TEST(Render, SmallImagesWithManyLightsStayWithinTheLoopLimit) {
+  // An 8×8 image would take all 300,000 lights in one pass by the evaluation bound alone;
+  // llvmpipe would then end the loop at 65,535 iterations and drop most lights silently.
+  context();
+  RoomOptions o;
+  o.lightCount = 1;
+  o.textured = false;
+  Scene scene = loadGltf(roomScene(o));
+  scene.lights.assign(300000, scene.lights[0]);
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    scene.lights[i].type = LightType::Point;
+    scene.lights[i].position = {-4.0f + 8.0f * float(i % 97) / 96.0f, 2.0f + float(i % 13) / 13.0f, -2.0f};
+    scene.lights[i].intensity = 1e-4f;
+    scene.lights[i].range = 0.0f;
+  }
+  RenderRequest request;
+  request.width = 8;
+  request.height = 8;
+  const RenderOutcome automatic = renderScene(scene, request);
+  request.lightsPerPass = 1000;
+  const RenderOutcome small = renderScene(scene, request);
+  EXPECT_GT(automatic.frame.lightingPasses, 1);
+  int lit = 0;
+  for (std::size_t i = 0; i < small.image.rgba.size(); ++i) {
+    if (i % 4 == 3 || small.image.rgba[i] <= 0.0f) continue;
+    ++lit;
+    EXPECT_NEAR(automatic.image.rgba[i], small.image.rgba[i], 1e-4 * small.image.rgba[i]) << "value " << i;
+  }
+  EXPECT_GT(lit, 0);
+}
+
 }  // namespace
 }  // namespace manylight::testing
 

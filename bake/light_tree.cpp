@@ -1,0 +1,235 @@
+#include "bake/light_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <limits>
+
+#include <glm/gtc/constants.hpp>
+
+namespace manylight {
+namespace {
+
+constexpr double kPi = glm::pi<double>();
+
+// A light as the builder sees it: where it is (directional: its direction on the unit
+// sphere), what it emits, and its texture slot.
+struct Item {
+  glm::vec3 point;
+  glm::vec3 axis;  // spot: the way it shines
+  glm::vec3 intensity;
+  float invRange2;
+  float outerAngle;
+  int slot;
+};
+
+double scalar(glm::vec3 i) { return double(i.r) + double(i.g) + double(i.b); }
+
+// The smallest cone holding cones a and b (Conty Estevez & Kulla 2018, Algorithm 1).
+void mergeCones(glm::vec3& axis, float& spread, glm::vec3 axisB, float spreadB) {
+  glm::dvec3 a(axis), b(axisB);
+  double ta = spread, tb = spreadB;
+  if (tb > ta) std::swap(a, b), std::swap(ta, tb);
+  const double td = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
+  if (std::min(td + tb, kPi) <= ta) {
+    axis = glm::vec3(a), spread = float(ta);
+    return;
+  }
+  const double to = (ta + td + tb) / 2.0;
+  if (to >= kPi) {
+    axis = glm::vec3(a), spread = float(kPi);
+    return;
+  }
+  // Rotate a towards b by to − ta.
+  glm::dvec3 w = b - a * glm::dot(a, b);
+  if (glm::dot(w, w) < 1e-24) w = std::abs(a.x) < 0.9 ? glm::cross(a, {1, 0, 0}) : glm::cross(a, {0, 1, 0});
+  w = glm::normalize(w);
+  const double r = to - ta;
+  axis = glm::vec3(glm::normalize(a * std::cos(r) + w * std::sin(r)));
+  spread = float(to);
+}
+
+LightTreeNode leafNode(const Item& it) {
+  LightTreeNode n;
+  n.boxMin = n.boxMax = it.point;
+  n.intensity = it.intensity;
+  n.representative = it.slot;
+  n.invRange2 = n.invRange2Max = it.invRange2;
+  n.axis = it.axis;
+  n.spread = 0.0f;
+  n.outerAngle = it.outerAngle;
+  return n;
+}
+
+// Deterministic uniform number in [0, 1) for node `index` (splitmix64).
+double uniform(std::uint64_t seed, std::uint64_t index) {
+  std::uint64_t z = seed + (index + 1) * 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  z ^= z >> 31;
+  return double(z >> 11) * 0x1.0p-53;
+}
+
+LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double u) {
+  if (l.empty()) return r;
+  if (r.empty()) return l;
+  LightTreeNode n;
+  n.boxMin = glm::min(l.boxMin, r.boxMin);
+  n.boxMax = glm::max(l.boxMax, r.boxMax);
+  n.intensity = l.intensity + r.intensity;
+  const double il = scalar(l.intensity), ir = scalar(r.intensity);
+  // Representative: the left child's with probability I_left / (I_left + I_right).
+  n.representative = (il + ir > 0.0 ? u * (il + ir) < il : u < 0.5) ? l.representative : r.representative;
+  n.invRange2 = (l.invRange2 == 0.0f || r.invRange2 == 0.0f) ? 0.0f : std::min(l.invRange2, r.invRange2);
+  n.invRange2Max = std::max(l.invRange2Max, r.invRange2Max);
+  n.axis = l.axis;
+  n.spread = l.spread;
+  mergeCones(n.axis, n.spread, r.axis, r.spread);
+  n.outerAngle = std::max(l.outerAngle, r.outerAngle);
+  return n;
+}
+
+struct Builder {
+  std::vector<Item> items;
+  std::vector<LightTreeNode>* nodes;
+  Split split;
+  bool oriented;  // spot lights: directions count in the metric
+  double c;       // scene diagonal
+  std::uint64_t seed;
+
+  // Metric of the items in [lo, hi) as one cluster. The cone is the one around the mean
+  // direction (not the smallest, which would need trigonometry per light): good enough to
+  // rank candidate splits.
+  double metricOf(int lo, int hi) const {
+    glm::vec3 mn = items[lo].point, mx = mn, sum(0.0f), axisSum(0.0f);
+    for (int i = lo; i < hi; ++i) {
+      const Item& it = items[i];
+      mn = glm::min(mn, it.point);
+      mx = glm::max(mx, it.point);
+      sum += it.intensity;
+      axisSum += it.axis;
+    }
+    double cone = 0.0;
+    if (oriented && glm::dot(axisSum, axisSum) > 0.0f) {
+      const glm::vec3 mean = glm::normalize(axisSum);
+      float cosSpread = 1.0f;
+      for (int i = lo; i < hi; ++i) cosSpread = std::min(cosSpread, glm::dot(mean, items[i].axis));
+      cone = c * (1.0 - double(cosSpread));
+    } else if (oriented) {
+      cone = 2.0 * c;
+    }
+    const glm::dvec3 d = glm::dvec3(mx) - glm::dvec3(mn);
+    return scalar(sum) * (glm::dot(d, d) + cone * cone);
+  }
+
+  float key(const Item& it, int axis) const {
+    return axis < 3 ? it.point[axis] : float(c) * it.axis[axis - 3];
+  }
+
+  void partition(int lo, int mid, int hi, int axis) {
+    std::nth_element(items.begin() + lo, items.begin() + mid, items.begin() + hi,
+                     [&](const Item& a, const Item& b) { return key(a, axis) < key(b, axis); });
+  }
+
+  void chooseAndPartition(int lo, int mid, int hi) {
+    if (split == Split::LongestAxis) {
+      glm::vec3 mn = items[lo].point, mx = mn;
+      for (int i = lo + 1; i < hi; ++i) mn = glm::min(mn, items[i].point), mx = glm::max(mx, items[i].point);
+      const glm::vec3 e = mx - mn;
+      partition(lo, mid, hi, e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2);
+      return;
+    }
+    int best = 0;
+    double bestCost = std::numeric_limits<double>::infinity();
+    const int axes = oriented ? 6 : 3;
+    for (int axis = 0; axis < axes; ++axis) {
+      partition(lo, mid, hi, axis);
+      const double cost = metricOf(lo, mid) + metricOf(mid, hi);
+      if (cost < bestCost) bestCost = cost, best = axis;
+    }
+    if (best != axes - 1) partition(lo, mid, hi, best);
+  }
+
+  // Fills node `index` (with `capacity` leaves below it) from items [lo, hi).
+  void build(int index, int capacity, int lo, int hi, int depth) {
+    LightTreeNode& node = (*nodes)[index];
+    if (capacity == 1) {
+      node = hi > lo ? leafNode(items[lo]) : LightTreeNode{};
+      return;
+    }
+    const int left = 2 * index + 1, right = 2 * index + 2;
+    if (hi == lo) {
+      // An empty subtree: nodes are already value-initialised as empty.
+      return;
+    }
+    const int mid = lo + (hi - lo + 1) / 2;
+    if (hi - lo > 1) chooseAndPartition(lo, mid, hi);
+    // The top levels build their halves on two threads (the halves touch disjoint items and
+    // nodes); below, one thread each.
+    if (depth < 2 && hi - lo > 4096) {
+      auto half = std::async(std::launch::async, [&] { build(left, capacity / 2, lo, mid, depth + 1); });
+      build(right, capacity / 2, mid, hi, depth + 1);
+      half.get();
+    } else {
+      build(left, capacity / 2, lo, mid, depth + 1);
+      build(right, capacity / 2, mid, hi, depth + 1);
+    }
+    node = mergeNodes((*nodes)[left], (*nodes)[right], uniform(seed, std::uint64_t(index)));
+  }
+};
+
+}  // namespace
+
+double clusterMetric(const LightTreeNode& node, double c) {
+  if (node.empty()) return 0.0;
+  const glm::dvec3 d = glm::dvec3(node.boxMax) - glm::dvec3(node.boxMin);
+  const double alpha2 = glm::dot(d, d);
+  const double cone = c > 0.0 ? c * (1.0 - std::cos(double(node.spread))) : 0.0;
+  return scalar(node.intensity) * (alpha2 + cone * cone);
+}
+
+std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights, const TreeOptions& options) {
+  const LightOrder order = lightOrder(lights);
+  // The scene diagonal c of the metric: over the positions of point and spot lights.
+  glm::dvec3 mn(std::numeric_limits<double>::max()), mx(-std::numeric_limits<double>::max());
+  for (const Light& l : lights) {
+    if (l.type != LightType::Directional) mn = glm::min(mn, glm::dvec3(l.position)), mx = glm::max(mx, glm::dvec3(l.position));
+  }
+  const double c = mx.x >= mn.x ? glm::length(mx - mn) : 0.0;
+
+  std::vector<LightTree> trees;
+  const int starts[4] = {0, order.pointStart, order.spotStart, int(order.scene.size())};
+  const LightType types[3] = {LightType::Directional, LightType::Point, LightType::Spot};
+  for (int t = 0; t < 3; ++t) {
+    const int count = starts[t + 1] - starts[t];
+    if (count == 0) continue;
+    Builder b;
+    b.items.reserve(count);
+    for (int slot = starts[t]; slot < starts[t + 1]; ++slot) {
+      const Light& l = lights[order.scene[slot]];
+      Item it;
+      it.point = l.type == LightType::Directional ? -l.direction : l.position;
+      it.axis = l.direction;
+      it.intensity = l.colour * l.intensity;
+      it.invRange2 = l.range > 0.0f && std::isfinite(l.range) ? 1.0f / (l.range * l.range) : 0.0f;
+      it.outerAngle = l.type == LightType::Spot ? l.outerConeAngle : 0.0f;
+      it.slot = slot;
+      b.items.push_back(it);
+    }
+    LightTree tree;
+    tree.type = types[t];
+    tree.leafCount = 1;
+    while (tree.leafCount < count) tree.leafCount *= 2;
+    tree.nodes.assign(std::size_t(2) * tree.leafCount - 1, LightTreeNode{});
+    b.nodes = &tree.nodes;
+    b.split = options.split;
+    b.oriented = tree.type == LightType::Spot;
+    b.c = c;
+    b.seed = options.seed ^ std::uint64_t(t);
+    b.build(0, tree.leafCount, 0, count, 0);
+    trees.push_back(std::move(tree));
+  }
+  return trees;
+}
+
+}  // namespace manylight

@@ -1,0 +1,26 @@
+#include "gl/texture_buffer.h"
+
+#include "gl/context.h"
+
+namespace manylight::gl {
+
+using namespace api;
+
+TextureBuffer uploadTextureBuffer(const void* data, std::size_t texels, GLenum format, const std::string& what) {
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  if (texels > std::size_t(maxTexels)) {
+    throw GlError(what + " need " + std::to_string(texels) + " texels, the driver's texture buffers hold " +
+                  std::to_string(maxTexels));
+  }
+  TextureBuffer t;
+  glBindBuffer(GL_TEXTURE_BUFFER, t.buffer.id());
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(texels * 16), data, GL_STATIC_DRAW);
+  glBindTexture(GL_TEXTURE_BUFFER, t.texture.id());
+  glTexBuffer(GL_TEXTURE_BUFFER, format, t.buffer.id());
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  return t;
+}
+
+}  // namespace manylight::gl

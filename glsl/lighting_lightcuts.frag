@@ -1,0 +1,295 @@
+// Lightcuts (Walter et al. 2005) without visibility: per pixel, a cut through the light
+// trees (one per light type). A node of the cut contributes its representative light's
+// shading times the node's total intensity; a leaf is exact.
+//
+// Bounds of a node's contribution at a surface point p (no shadows, so conservative):
+//   upper = I · (albedo/π + ks·(n+2)/(2π)·cosᵣ⁺ⁿ) · cos⁺ · window(d⁻)/d⁻²   [· 0 if the spot
+//           cone cannot reach p]
+//   lower = I · albedo/π · cos⁻ · window⁻(d⁺)/d⁺²   (0 for spot nodes)
+// with d⁻, d⁺ the nearest and farthest distances from p to the node's box, cos⁺ ≥ the
+// largest and cos⁻ ≤ the smallest cosine between the normal and a direction into the box
+// (cosᵣ⁺ likewise about the mirror direction), window⁻ using the smallest range. p inside a
+// box: the upper bound is unbounded, and the node is always refined. Directional trees use
+// p = 0 and no distance term (their boxes hold directions). Both a node's estimate and its
+// true contribution lie in [lower, upper], so its error is at most upper − lower.
+//
+// Stopping rules (uErrorMode):
+//   0 "node", the paper's: every node of the cut has upper ≤ ε · max(estimate).
+//   1 "total": with B = Σ (upper − lower) over the cut, max(B) ≤ ε · max(estimate − B) or
+//     max(B) ≤ kAbsoluteFloor; then every channel's error is ≤ ε × the pixel's largest true
+//     channel (or the floor).
+// How the cut is found: the paper keeps the cut in a priority queue and refines the node
+// with the largest bound first. On llvmpipe a per-pixel array costs time in proportion to
+// its capacity on every dynamic access (measured: the same 224-node cuts took 18 s with
+// 512 entries, 35 s with 1,024, at 640×480), so instead each pass walks the implicit tree
+// depth first without any stack, refining every node whose measure exceeds a threshold;
+// passes tighten the threshold until the rule holds (see nodeRuleCut and totalRuleCut).
+// The end condition is the rule itself; only the order of refinement differs, which
+// matters where a cut reaches uMaxCut (those pixels are counted).
+// The DISTANCE variant is the cheaper, unguaranteed criterion of the Lightcuts-in-UE4 work:
+// refine a node while p lies within its radius of influence, uInfluence × half its box
+// diagonal of its box centre.
+uniform sampler2D uPosition;
+uniform sampler2D uNormal;
+uniform sampler2D uAlbedo;
+uniform sampler2D uSpecular;
+uniform vec3 uEye;
+uniform vec3 uForward;
+uniform bool uOrthographic;
+uniform float uError;     // ε
+uniform int uErrorMode;   // 0 node, 1 total
+uniform int uMaxCut;      // most nodes in a cut
+uniform float uInfluence; // DISTANCE: radius of influence per half diagonal
+
+layout(location = 0) out vec4 oRadiance;
+// x: cut size, y: light evaluations, z: node bound evaluations, w: 1, or 2 where the cut hit
+// uMaxCut (0 stays on background pixels).
+layout(location = 1) out vec4 oCutStats;
+
+const float kUnbounded = 3.0e38;
+const float kAbsoluteFloor = 1e-6;
+
+Surface s;
+int lightEvaluations = 0;
+int nodeEvaluations = 0;
+
+// Shading of light slot `rep` of tree `tree` per unit intensity.
+vec3 unitTerm(int tree, int rep) {
+  ++lightEvaluations;
+  vec3 l;
+  float e = unitIrradiance(tree, rep, s.position, s.normal, l);
+  if (e == 0.0) return vec3(0.0);
+#ifdef HAS_SPECULAR
+  return brdf(s, l) * e;
+#else
+  return s.albedo * (e / kPi);
+#endif
+}
+
+// Largest of u·(x − p)/|x − p| over the box, bounded through the largest numerator over the
+// nearest distance dMin.
+float cosineUpper(vec3 u, vec3 p, Node n, float dMin) {
+  vec3 m = max(u * (n.boxMin - p), u * (n.boxMax - p));
+  float num = m.x + m.y + m.z;
+  if (num <= 0.0) return 0.0;
+  return dMin > 0.0 ? min(num / dMin, 1.0) : 1.0;
+}
+
+// Smallest cosine over the box: the smallest numerator over the farthest distance dMax.
+float cosineLower(vec3 u, vec3 p, Node n, float dMax) {
+  vec3 m = min(u * (n.boxMin - p), u * (n.boxMax - p));
+  float num = m.x + m.y + m.z;
+  return num > 0.0 ? min(num / dMax, 1.0) : 0.0;
+}
+
+float window(float d2, float invRange2) {
+  float x = d2 * invRange2;
+  float w = clamp(1.0 - x * x, 0.0, 1.0);
+  return w * w;
+}
+
+// Whether some light of spot node n may shine on p: some direction from its box to p lies
+// within Θ of the axis (the box seen as its bounding sphere).
+bool spotMayReach(Node n, vec3 p) {
+  vec3 c = 0.5 * (n.boxMin + n.boxMax);
+  float r = 0.5 * length(n.boxMax - n.boxMin);
+  vec3 toP = p - c;
+  float d = length(toP);
+  if (d <= r) return true;
+  float sinA = r / d;
+  float cosA = sqrt(max(1.0 - sinA * sinA, 0.0));
+  float cosT = n.w2;
+  float sinSum = n.sinTheta * cosA + cosT * sinA;  // sin(Θ + α)
+  if (sinSum < 0.0) return true;                   // Θ + α beyond π
+  float cosSum = cosT * cosA - n.sinTheta * sinA;  // cos(Θ + α)
+  return dot(n.axis, toP) / d >= cosSum;
+}
+
+// Upper and lower bounds of node n's contribution (see the top of this file). Returns
+// false when the upper bound is unbounded (p inside the box).
+bool nodeBounds(int tree, Node n, out vec3 upper, out vec3 lower) {
+  ++nodeEvaluations;
+  upper = vec3(0.0);
+  lower = vec3(0.0);
+  vec3 p = tree == 0 ? vec3(0.0) : s.position;
+  vec3 nearest = clamp(p, n.boxMin, n.boxMax) - p;
+  float d2Min = dot(nearest, nearest);
+  if (tree != 0 && d2Min == 0.0) return false;
+  vec3 farthest = max(abs(n.boxMin - p), abs(n.boxMax - p));
+  float d2Max = dot(farthest, farthest);
+  float dMin = sqrt(d2Min);
+  float cosUp = cosineUpper(s.normal, p, n, dMin);
+  if (cosUp == 0.0) return true;
+  float gUp = 1.0, gLow = 1.0;
+  if (tree != 0) {
+    gUp = window(d2Min, n.invRange2) / max(d2Min, kMinDistanceSquared);
+    gLow = tree == 2 ? 0.0 : window(d2Max, n.w2) / max(d2Max, kMinDistanceSquared);
+    if (tree == 2 && !spotMayReach(n, p)) return true;
+  }
+  vec3 m = s.albedo / kPi;
+#ifdef HAS_SPECULAR
+  if (s.specular != vec3(0.0)) {
+    float rUp = cosineUpper(reflect(-s.view, s.normal), p, n, dMin);
+    m += s.specular * ((s.exponent + 2.0) / (2.0 * kPi) * pow(rUp, s.exponent));
+  }
+#endif
+  upper = n.intensity * m * (cosUp * gUp);
+  if (gLow > 0.0) lower = n.intensity * (s.albedo / kPi) * (cosineLower(s.normal, p, n, sqrt(d2Max)) * gLow);
+  return true;
+}
+
+float maxOf(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+// The result of one pass over the trees.
+vec3 estimateSum;  // Σ of the cut's estimates (leaves exact)
+vec3 errorSum;     // Σ of the cut's error bounds (upper − lower), bounded nodes only
+int cutSize;
+int unboundedNodes;  // nodes kept in the cut although unbounded (only when the cut is full)
+bool atMax;          // the cut could not be refined further for want of room
+
+// Most recently computed representative term, reused when the next node shares it (a
+// left child has its parent's representative half of the time).
+int lastRepresentative = -1;
+int lastTree = -1;
+vec3 lastTerm;
+
+vec3 representativeTerm(int tree, int rep) {
+  if (rep != lastRepresentative || tree != lastTree) {
+    lastTerm = unitTerm(tree, rep);
+    lastRepresentative = rep;
+    lastTree = tree;
+  }
+  return lastTerm;
+}
+
+// llvmpipe ends every loop of a shader invocation once all loops together have run 65,535
+// iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), silently. A pass visits at most
+// 2·uMaxCut nodes, one iteration each, so a pass starts only while the budget holds a full
+// one; a pixel that runs out keeps its last complete pass and is counted as at the maximum.
+const int kIterationBudget = 65000;
+int iterationsLeft = kIterationBudget;
+
+bool passFits() { return iterationsLeft >= 2 * uMaxCut + 8; }
+
+// One cut through every tree, depth first and without a stack (the implicit layout gives
+// child and next node by arithmetic): a node is refined when `measure` of it exceeds tau and
+// the cut has room (uMaxCut), otherwise it joins the cut with its estimate.
+// measure: 0 the upper bound (node rule), 1 upper − lower (total rule), 2 the distance
+// criterion (refine inside the radius of influence; tau unused).
+void cutPass(float tau, int measure) {
+  estimateSum = vec3(0.0);
+  errorSum = vec3(0.0);
+  cutSize = 0;
+  unboundedNodes = 0;
+  atMax = false;
+  for (int tree = 0; tree < 3; ++tree) {
+    int leaves = uTreeLeaves[tree];
+    if (leaves == 0) continue;
+    // Nodes are numbered h = i + 1 here: children 2h and 2h + 1, the root 1.
+    int h = 1;
+    int pending = 0;  // right siblings still to visit: nodes already promised to the cut
+    while (true) {
+      --iterationsLeft;
+      int i = h - 1;
+      Node n = fetchNode(tree, i);
+      bool refine = false;
+      if (n.representative >= 0 && i < leaves - 1) {
+        bool wanted;
+        vec3 error = vec3(0.0);
+        bool bounded = true;
+        if (measure == 2) {
+          ++nodeEvaluations;
+          vec3 p = tree == 0 ? vec3(0.0) : s.position;
+          float radius = 0.5 * length(n.boxMax - n.boxMin) * uInfluence;
+          vec3 toCentre = 0.5 * (n.boxMin + n.boxMax) - p;
+          wanted = dot(toCentre, toCentre) < radius * radius;
+        } else {
+          vec3 upper, lower;
+          bounded = nodeBounds(tree, n, upper, lower);
+          error = measure == 0 ? upper : upper - lower;
+          wanted = !bounded || maxOf(error) > tau;
+        }
+        if (wanted && cutSize + pending + 2 <= uMaxCut) {
+          refine = true;
+        } else {
+          atMax = atMax || wanted;
+          if (bounded) {
+            errorSum += error;
+          } else {
+            ++unboundedNodes;
+          }
+        }
+      }
+      if (refine) {
+        h *= 2;
+        ++pending;
+        continue;
+      }
+      if (n.representative >= 0) {
+        ++cutSize;
+        estimateSum += representativeTerm(tree, n.representative) * n.intensity;
+      }
+      // Next: up past every level where this is a right child (h's trailing ones), then
+      // across to the right sibling: (h + 1) with its trailing zeros shifted out. Back at
+      // the root means the tree is done.
+      int next = h + 1;
+      h = next / (next & -next);
+      if (h == 1) break;
+      --pending;
+    }
+  }
+}
+
+// The node rule: every node of the cut has an upper bound ≤ ε × the pixel's estimate. A pass
+// refines against the previous pass's estimate (the first against the roots'); another
+// pass follows while the estimate fell, since the threshold was then too loose.
+void nodeRuleCut() {
+  cutPass(kUnbounded * 0.5, 0);  // the roots (and unbounded nodes below them)
+  bool done = false;
+  for (int pass = 0; pass < 4 && passFits(); ++pass) {
+    vec3 previous = estimateSum;
+    cutPass(uError * maxOf(previous), 0);
+    done = atMax || maxOf(estimateSum) >= maxOf(previous);
+    if (done) break;
+  }
+  atMax = atMax || !done;
+}
+
+// The total rule: Σ (upper − lower) ≤ ε · (estimate − Σ (upper − lower)), or ≤ the absolute
+// floor. Passes lower a common threshold on each node's error until the sum holds.
+void totalRuleCut() {
+  cutPass(kUnbounded * 0.5, 1);
+  float tau = uError * maxOf(estimateSum) / 16.0;
+  while (passFits()) {
+    cutPass(tau, 1);
+    float b = maxOf(errorSum);
+    float allowed = uError * maxOf(estimateSum - errorSum);
+    if (atMax || (unboundedNodes == 0 && (b <= allowed || b <= kAbsoluteFloor))) return;
+    tau *= clamp(0.5 * allowed / b, 0.05, 0.5);
+  }
+  atMax = true;  // out of iterations before the rule held: counted with the full cuts
+}
+
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 normal = texelFetch(uNormal, px, 0);
+  if (normal.w == 0.0) discard;  // background
+  vec4 position = texelFetch(uPosition, px, 0);
+  s.position = position.xyz;
+  s.normal = normal.xyz;
+  s.view = uOrthographic ? -uForward : normalize(uEye - position.xyz);
+  s.albedo = texelFetch(uAlbedo, px, 0).rgb;
+  s.specular = texelFetch(uSpecular, px, 0).rgb;
+  s.exponent = position.w;
+#ifdef DISTANCE
+  cutPass(0.0, 2);
+#else
+  if (uErrorMode == 0) {
+    nodeRuleCut();
+  } else {
+    totalRuleCut();
+  }
+#endif
+  oRadiance = vec4(estimateSum, 0.0);
+  oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations), atMax ? 2.0 : 1.0);
+}

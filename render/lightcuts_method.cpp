@@ -1,0 +1,108 @@
+#include "render/lightcuts_method.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gl/context.h"
+#include "render/lighting_inputs.h"
+
+namespace manylight {
+
+using namespace gl::api;
+
+LightcutsMethod::LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
+                                 const TreeOptions& options)
+    : width_(gbuffer.width()), height_(gbuffer.height()) {
+  layout_ = packLightTrees(buildLightTrees(lights, options));
+  std::vector<std::uint32_t>& texels = layout_.texels;
+  if (texels.empty()) texels.assign(4, 0u);  // no lights: keep the sampler complete
+  nodes_ = gl::uploadTextureBuffer(texels.data(), texels.size() / 4, GL_RGBA32UI,
+                                   "light trees of " + std::to_string(lights.size()) + " lights");
+  texels = {};
+
+  glBindTexture(GL_TEXTURE_2D, statsTarget_.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width_, height_, 0, GL_RGBA, GL_FLOAT, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                         gbuffer.target(GBuffer::kRadiance).id(), 0);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, statsTarget_.id(), 0);
+  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glDrawBuffers(2, buffers);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw gl::GlError("lightcuts framebuffer is incomplete");
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+const gl::Program& LightcutsMethod::program(const std::vector<std::string>& defines) const {
+  auto it = programs_.find(defines);
+  if (it == programs_.end()) {
+    it = programs_.emplace(defines, gl::Program("fullscreen.vert", "lighting_lightcuts.frag", defines,
+                                                {"oRadiance", "oCutStats"})).first;
+  }
+  return it->second;
+}
+
+void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
+                            const LightcutsSettings& settings) const {
+  const int maxCut = std::clamp(settings.maxCut, 1, kMaxCutLimit);
+  std::vector<std::string> defines;
+  if (settings.distance) defines.push_back("DISTANCE");
+  if (scene.hasSpecular()) defines.push_back("HAS_SPECULAR");
+  const gl::Program& shader = program(defines);
+  shader.use();
+
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  const float zero[4] = {0, 0, 0, 0};
+  glClearBufferfv(GL_COLOR, 1, zero);
+  bindLightingInputs(shader, gbuffer, scene, view);
+  glActiveTexture(GL_TEXTURE5);
+  glBindTexture(GL_TEXTURE_BUFFER, nodes_.texture.id());
+  glUniform1i(shader.uniform("uNodes"), 5);
+  glUniform3i(shader.uniform("uTreeBase"), layout_.base[0], layout_.base[1], layout_.base[2]);
+  glUniform3i(shader.uniform("uTreeLeaves"), layout_.leaves[0], layout_.leaves[1], layout_.leaves[2]);
+  glUniform1f(shader.uniform("uError"), settings.error);
+  glUniform1i(shader.uniform("uErrorMode"), settings.mode == ErrorMode::Total ? 1 : 0);
+  glUniform1i(shader.uniform("uMaxCut"), maxCut);
+  glUniform1f(shader.uniform("uInfluence"), 1.0f / std::sqrt(std::max(settings.error, 1e-6f)));
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+CutStats LightcutsMethod::cutStats() const {
+  std::vector<float> texels(std::size_t(width_) * height_ * 4);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glReadBuffer(GL_COLOR_ATTACHMENT1);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, texels.data());
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  CutStats stats;
+  double cut = 0.0, lightEvals = 0.0, nodeEvals = 0.0;
+  stats.atMaxCut.assign(std::size_t(width_) * height_, 0);
+  for (std::size_t i = 0; i < texels.size(); i += 4) {
+    if (texels[i + 3] == 0.0f) continue;  // background
+    ++stats.pixels;
+    cut += texels[i];
+    lightEvals += texels[i + 1];
+    nodeEvals += texels[i + 2];
+    stats.maxCut = std::max(stats.maxCut, int(texels[i]));
+    if (texels[i + 3] > 1.5f) {
+      ++stats.pixelsAtMaxCut;
+      const std::size_t pixel = i / 4, x = pixel % width_, y = pixel / width_;
+      stats.atMaxCut[(height_ - 1 - y) * width_ + x] = 1;  // GL rows run bottom-up
+    }
+  }
+  if (stats.pixels > 0) {
+    stats.averageCut = cut / stats.pixels;
+    stats.lightEvaluations = lightEvals / stats.pixels;
+    stats.nodeEvaluations = nodeEvals / stats.pixels;
+  }
+  return stats;
+}
+
+}  // namespace manylight

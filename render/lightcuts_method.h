@@ -1,0 +1,68 @@
+#pragma once
+// Lightcuts: the light trees of bake/light_tree.h in a node texture, and a per-pixel cut
+// through them in the fragment shader (glsl/lighting_lightcuts.frag documents the bounds
+// and stopping rules).
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bake/light_tree.h"
+#include "bake/light_tree_pack.h"
+#include "gl/texture_buffer.h"
+#include "render/gbuffer.h"
+#include "render/gpu_scene.h"
+#include "scene/camera.h"
+
+namespace manylight {
+
+enum class ErrorMode { Node, Total };
+
+struct LightcutsSettings {
+  bool distance = false;  // the distance criterion (lightcuts-distance) instead of bounds
+  float error = 0.02f;    // ε
+  ErrorMode mode = ErrorMode::Node;
+  int maxCut = 1000;      // nodes per cut; at most kMaxCutLimit
+};
+
+// llvmpipe ends a shader invocation's loops after 65,535 iterations in all, and a pass
+// over the trees takes up to 2 iterations per cut node: this limit leaves room for several
+// passes (glsl/lighting_lightcuts.frag).
+inline constexpr int kMaxCutLimit = 8000;
+
+// Per-pixel cut statistics of a frame, over the covered pixels.
+struct CutStats {
+  long long pixels = 0;
+  double averageCut = 0.0;
+  int maxCut = 0;
+  long long pixelsAtMaxCut = 0;
+  double lightEvaluations = 0.0;  // per pixel
+  double nodeEvaluations = 0.0;   // per pixel (error bounds or distance tests)
+  std::vector<std::uint8_t> atMaxCut;  // per pixel, rows top-down: 1 where the cut hit the maximum
+};
+
+class LightcutsMethod {
+ public:
+  // Builds the trees of `lights` and uploads them; needs a current context. Throws
+  // gl::GlError when the driver cannot hold them.
+  LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer, const TreeOptions& options = {});
+
+  // Adds the lights' contribution to the radiance target of `gbuffer` and writes the cut
+  // statistics target.
+  void light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
+             const LightcutsSettings& settings) const;
+
+  // Reads back the statistics of the last light() call.
+  CutStats cutStats() const;
+
+ private:
+  const gl::Program& program(const std::vector<std::string>& defines) const;
+
+  PackedTrees layout_;  // bases and leaf counts (the texels are dropped after upload)
+  gl::TextureBuffer nodes_;
+  int width_, height_;
+  gl::Texture statsTarget_;
+  gl::Framebuffer framebuffer_;  // radiance + statistics
+  mutable std::map<std::vector<std::string>, gl::Program> programs_;
+};
+
+}  // namespace manylight

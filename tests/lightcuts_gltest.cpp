@@ -1,0 +1,175 @@
+// Lightcuts against the GPU reference method: the `total` rule's guarantee, and the `node`
+// rule's measured errors, on light layouts chosen to break cuts.
+#include <cmath>
+#include <iostream>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "render/render_job.h"
+#include "scene/gltf_loader.h"
+#include "tests/test_support.h"
+
+namespace manylight::testing {
+namespace {
+
+constexpr int kWidth = 96, kHeight = 72;
+// Both methods sum in float: allow 1e-4 of the pixel on top of ε (measured rounding: below
+// 1e-5), and the shader's absolute floor for near-black pixels.
+constexpr double kFloatSlack = 1e-4;
+constexpr double kAbsoluteFloor = 1e-6;
+// Large enough that the total rule converges on nearly every pixel of these scenes.
+constexpr int kMaxCut = 8000;
+
+enum class Layout { Uniform, Clustered, Coincident, WideIntensities, Far, Mixed };
+
+// `count` lights over the room of writeRoomScene (x, z in [−4.5, 4.5], y in [0.3, 4.3]).
+std::vector<Light> makeLights(Layout layout, int count, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  auto inRoom = [&] { return glm::vec3(-4.5f + 9.0f * u(rng), 0.3f + 4.0f * u(rng), -4.5f + 9.0f * u(rng)); };
+  std::vector<glm::vec3> centres;
+  for (int k = 0; k < 12; ++k) centres.push_back(inRoom());
+  std::vector<Light> lights(count);
+  for (int i = 0; i < count; ++i) {
+    Light& l = lights[i];
+    l.colour = glm::vec3(0.3f) + 0.7f * glm::vec3(u(rng), u(rng), u(rng));
+    l.intensity = 60.0f / float(count);
+    l.position = inRoom();
+    switch (layout) {
+      case Layout::Clustered: {
+        const glm::vec3 c = centres[i % centres.size()];
+        l.position = c + 0.05f * glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f);
+        break;
+      }
+      case Layout::Coincident:
+        l.position = {0.5f, 2.5f, 1.0f};
+        break;
+      case Layout::WideIntensities:
+        l.intensity = std::pow(10.0f, -6.0f + 12.0f * u(rng)) / float(count);
+        break;
+      case Layout::Far: {
+        const glm::vec3 d = glm::normalize(glm::vec3(u(rng) - 0.5f, 0.2f + u(rng), u(rng) - 0.5f));
+        l.position = 1e5f * d + glm::vec3(u(rng), u(rng), u(rng));
+        l.intensity = 60.0f * 1e10f / float(count);
+        break;
+      }
+      case Layout::Mixed:
+        l.type = LightType(i % 3);
+        l.direction = glm::normalize(glm::vec3(-3.0f + 6.0f * u(rng), 0.0f, -3.0f + 6.0f * u(rng)) - l.position);
+        if (l.type == LightType::Spot) {
+          l.outerConeAngle = 0.35f + 0.5f * u(rng);
+          l.innerConeAngle = 0.6f * l.outerConeAngle;
+          l.intensity *= 2.0f;
+        }
+        if (l.type == LightType::Directional) l.intensity = 1.0f / float(count);
+        if (l.type != LightType::Directional && i % 2 == 0) l.range = 3.0f + 5.0f * u(rng);
+        break;
+      default:
+        break;
+    }
+  }
+  return lights;
+}
+
+struct Errors {
+  int compared = 0, atMaxCut = 0, failing = 0;
+  double worst = 0.0, p99 = 0.0;
+  double averageCut = 0.0;
+};
+
+// Per pixel: max over channels of |cut − reference| / max over channels of reference.
+Errors compareWithReference(const Scene& room, const std::vector<Light>& lights, ErrorMode mode,
+                            double epsilon, const std::string& name) {
+  Scene scene = room;
+  scene.lights = lights;
+  RenderRequest request;
+  request.width = kWidth;
+  request.height = kHeight;
+  const RenderOutcome reference = renderScene(scene, request);
+  request.method = Method::Lightcuts;
+  request.lightcuts.mode = mode;
+  request.lightcuts.error = float(epsilon);
+  request.lightcuts.maxCut = kMaxCut;
+  const RenderOutcome cut = renderScene(scene, request);
+  Errors e;
+  e.averageCut = cut.frame.cuts.averageCut;
+  std::vector<double> relative;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const float* r = reference.image.pixel(x, y);
+      const float* c = cut.image.pixel(x, y);
+      if (r[3] == 0.0f) continue;  // background
+      if (cut.frame.cuts.atMaxCut[std::size_t(y) * kWidth + x]) {
+        ++e.atMaxCut;
+        continue;
+      }
+      ++e.compared;
+      const double peak = std::max({double(r[0]), double(r[1]), double(r[2])});
+      double diff = 0.0;
+      for (int ch = 0; ch < 3; ++ch) diff = std::max(diff, std::abs(double(c[ch]) - double(r[ch])));
+      const double rel = diff / std::max(peak, 1e-30);
+      relative.push_back(rel);
+      e.worst = std::max(e.worst, rel);
+      if (diff > (epsilon + kFloatSlack) * peak + kAbsoluteFloor) ++e.failing;
+    }
+  }
+  if (!relative.empty()) {
+    std::sort(relative.begin(), relative.end());
+    e.p99 = relative[std::size_t(0.99 * double(relative.size() - 1))];
+  }
+  std::cout << name << ": " << e.compared << " pixels, worst " << e.worst << ", p99 " << e.p99
+            << ", average cut " << e.averageCut << ", at max cut " << e.atMaxCut << "\n";
+  return e;
+}
+
+class LightcutsTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    context();
+    RoomOptions o;
+    o.lightCount = 1;
+    o.textured = false;
+    room_ = new Scene(loadGltf(roomScene(o, "lightcuts-room.gltf")));
+  }
+  static void TearDownTestSuite() { delete room_; }
+  static Scene* room_;
+};
+Scene* LightcutsTest::room_ = nullptr;
+
+struct Case {
+  const char* name;
+  Layout layout;
+  int count;
+};
+
+const Case kCases[] = {
+    {"uniform-4096", Layout::Uniform, 4096},       {"clustered-4096", Layout::Clustered, 4096},
+    {"coincident-1000", Layout::Coincident, 1000}, {"wide-intensities-2000", Layout::WideIntensities, 2000},
+    {"far-1000", Layout::Far, 1000},               {"mixed-3000", Layout::Mixed, 3000},
+    {"count-1", Layout::Mixed, 1},                 {"count-2", Layout::Mixed, 2},
+    {"count-3", Layout::Mixed, 3},                 {"count-1023", Layout::Uniform, 1023},
+    {"count-1025", Layout::Uniform, 1025},         {"count-prime-1009", Layout::Mixed, 1009},
+};
+
+TEST_F(LightcutsTest, TotalRuleErrorIsWithinEpsilonOfTheReference) {
+  for (const Case& c : kCases) {
+    const Errors e = compareWithReference(*room_, makeLights(c.layout, c.count, 7), ErrorMode::Total, 0.02,
+                                          std::string("total/") + c.name);
+    EXPECT_GT(e.compared, 0) << c.name;
+    EXPECT_EQ(e.failing, 0) << c.name << ": worst relative error " << e.worst;
+    // Cuts that hit the maximum are excluded above; they must stay rare.
+    EXPECT_LE(e.atMaxCut, (e.compared + e.atMaxCut) / 100) << c.name;
+  }
+}
+
+TEST_F(LightcutsTest, NodeRuleErrorsAreMeasured) {
+  for (const Case& c : kCases) {
+    const Errors e = compareWithReference(*room_, makeLights(c.layout, c.count, 7), ErrorMode::Node, 0.02,
+                                          std::string("node/") + c.name);
+    EXPECT_GT(e.compared, 0) << c.name;
+  }
+}
+
+}  // namespace
+}  // namespace manylight::testing
