@@ -39,7 +39,7 @@ glm::vec3 parseRgb(const std::string& s) {
 
 struct RenderArgs {
   std::string scene, output, size = "640x480", method = "reference", backend = "auto";
-  std::string ambient = "0,0,0", statsPath, errorMode = "node";
+  std::string ambient = "0,0,0", statsPath, errorMode = "node", treeSplit = "metric";
   float error = 0.02f;
   int maxCut = LightcutsSettings{}.maxCut;
   int camera = -1;
@@ -66,6 +66,11 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
     return kExitUsage;
   }
   request.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
+  if (a.treeSplit != "metric" && a.treeSplit != "longest-axis") {
+    std::cerr << "manylight: --tree-split: expected metric or longest-axis, got '" << a.treeSplit << "'\n";
+    return kExitUsage;
+  }
+  request.lightcuts.split = a.treeSplit == "metric" ? Split::Metric : Split::LongestAxis;
   const gl::Backend backend = gl::parseBackend(a.backend);
   checkOutputPath(a.output);
 
@@ -127,6 +132,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
         stats["error_mode"] = a.errorMode;
       }
       stats["max_cut"] = request.lightcuts.maxCut;
+      stats["tree_split"] = a.treeSplit;
     }
     writeTextFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
@@ -162,6 +168,10 @@ int main(int argc, char** argv) {
   render->add_option("--error-mode", r.errorMode,
                      "lightcuts: node (the paper's rule: each node's bound ≤ ε·estimate) or total "
                      "(guaranteed: the sum of the cut's error bounds ≤ ε·estimate)")
+      ->capture_default_str();
+  render->add_option("--tree-split", r.treeSplit,
+                     "lightcuts: how the light trees pair lights: metric (the split with the smallest "
+                     "cluster metric) or longest-axis (the k-d baseline)")
       ->capture_default_str();
   render->add_option("--max-cut", r.maxCut, "lightcuts: most nodes in a pixel's cut")
       ->capture_default_str()

@@ -85,6 +85,13 @@ LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double 
   n.axis = l.axis;
   n.spread = l.spread;
   mergeCones(n.axis, n.spread, r.axis, r.spread);
+  // The axis is stored in float: widen the spread until it holds both children's cones as
+  // stored, measured in double (plus a float step), so the bound stays conservative.
+  for (const LightTreeNode* c : {&l, &r}) {
+    const double angle = std::acos(
+        std::clamp(glm::dot(glm::normalize(glm::dvec3(n.axis)), glm::normalize(glm::dvec3(c->axis))), -1.0, 1.0));
+    n.spread = std::max(n.spread, std::nextafter(float(std::min(angle + double(c->spread), kPi)), 4.0f));
+  }
   n.outerAngle = std::max(l.outerAngle, r.outerAngle);
   return n;
 }
@@ -223,8 +230,8 @@ std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights, const T
     tree.nodes.assign(std::size_t(2) * tree.leafCount - 1, LightTreeNode{});
     b.nodes = &tree.nodes;
     b.split = options.split;
-    b.oriented = tree.type == LightType::Spot;
-    b.c = c;
+    b.oriented = tree.type == LightType::Spot && options.coneWeight > 0.0;
+    b.c = c * options.coneWeight;
     b.seed = options.seed ^ std::uint64_t(t);
     b.build(0, tree.leafCount, 0, count, 0);
     trees.push_back(std::move(tree));

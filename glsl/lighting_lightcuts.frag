@@ -82,6 +82,24 @@ float cosineLower(vec3 u, vec3 p, Node n, float dMax) {
   return num > 0.0 ? min(num / dMax, 1.0) : 0.0;
 }
 
+// Tighter where the box is small and far: the cone around the direction u·… to the box's
+// bounding sphere (centre c, radius r). Returns cos(max(θ − α, 0)) in .x and
+// cos(min(θ + α, π/2))⁺ in .y, θ the angle between u and the centre, α the sphere's angular
+// radius; (1, 0) when p is inside the sphere.
+vec2 sphereCosines(vec3 u, vec3 p, Node n) {
+  vec3 c = 0.5 * (n.boxMin + n.boxMax) - p;
+  float r2 = 0.25 * dot(n.boxMax - n.boxMin, n.boxMax - n.boxMin);
+  float d2 = dot(c, c);
+  if (d2 <= r2) return vec2(1.0, 0.0);
+  float cosT = dot(u, c) * inversesqrt(d2);
+  float sinT = sqrt(max(1.0 - cosT * cosT, 0.0));
+  float sinA = sqrt(r2 / d2);
+  float cosA = sqrt(1.0 - sinA * sinA);
+  float upper = cosT >= cosA ? 1.0 : cosT * cosA + sinT * sinA;
+  float lower = max(cosT * cosA - sinT * sinA, 0.0);
+  return vec2(upper, lower);
+}
+
 float window(float d2, float invRange2) {
   float x = d2 * invRange2;
   float w = clamp(1.0 - x * x, 0.0, 1.0);
@@ -118,8 +136,9 @@ bool nodeBounds(int tree, Node n, out vec3 upper, out vec3 lower) {
   vec3 farthest = max(abs(n.boxMin - p), abs(n.boxMax - p));
   float d2Max = dot(farthest, farthest);
   float dMin = sqrt(d2Min);
-  float cosUp = cosineUpper(s.normal, p, n, dMin);
-  if (cosUp == 0.0) return true;
+  vec2 sphere = sphereCosines(s.normal, p, n);
+  float cosUp = min(cosineUpper(s.normal, p, n, dMin), sphere.x);
+  if (cosUp <= 0.0) return true;
   float gUp = 1.0, gLow = 1.0;
   if (tree != 0) {
     gUp = window(d2Min, n.invRange2) / max(d2Min, kMinDistanceSquared);
@@ -129,12 +148,16 @@ bool nodeBounds(int tree, Node n, out vec3 upper, out vec3 lower) {
   vec3 m = s.albedo / kPi;
 #ifdef HAS_SPECULAR
   if (s.specular != vec3(0.0)) {
-    float rUp = cosineUpper(reflect(-s.view, s.normal), p, n, dMin);
+    vec3 mirror = reflect(-s.view, s.normal);
+    float rUp = min(cosineUpper(mirror, p, n, dMin), sphereCosines(mirror, p, n).x);
     m += s.specular * ((s.exponent + 2.0) / (2.0 * kPi) * pow(rUp, s.exponent));
   }
 #endif
   upper = n.intensity * m * (cosUp * gUp);
-  if (gLow > 0.0) lower = n.intensity * (s.albedo / kPi) * (cosineLower(s.normal, p, n, sqrt(d2Max)) * gLow);
+  if (gLow > 0.0) {
+    float cosLow = max(cosineLower(s.normal, p, n, sqrt(d2Max)), sphere.y);
+    lower = n.intensity * (s.albedo / kPi) * (cosLow * gLow);
+  }
   return true;
 }
 

@@ -22,6 +22,7 @@ struct LightcutsSettings {
   float error = 0.02f;    // ε
   ErrorMode mode = ErrorMode::Node;
   int maxCut = 1000;      // nodes per cut; at most kMaxCutLimit
+  Split split = Split::Metric;  // how the trees pair lights (used when they are built)
 };
 
 // llvmpipe ends a shader invocation's loops after 65,535 iterations in all, and a pass

@@ -19,7 +19,7 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   const std::vector<Light> rig = out.defaultRig ? defaultLightRig(camera) : std::vector<Light>{};
   const std::vector<Light>& lights = out.defaultRig ? rig : scene.lights;
   out.lightCount = lights.size();
-  Renderer renderer(scene, lights, request.width, request.height, request.method);
+  Renderer renderer(scene, lights, request.width, request.height, request.method, request.lightcuts.split);
   FrameSettings settings;
   settings.ambient = request.ambient;
   settings.lightsPerPass = request.lightsPerPass;

@@ -28,7 +28,7 @@ const char* methodName(Method m) {
 }
 
 Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-                   Method method)
+                   Method method, Split split)
     : scene_(scene),
       gpu_(scene, lights),
       gbuffer_(width, height),
@@ -43,7 +43,9 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
   if (method != Method::Reference) {
     glFinish();
     const auto start = std::chrono::steady_clock::now();
-    lightcuts_ = std::make_unique<LightcutsMethod>(lights, gbuffer_);
+    TreeOptions tree;
+    tree.split = split;
+    lightcuts_ = std::make_unique<LightcutsMethod>(lights, gbuffer_, tree);
     glFinish();
     bakeMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }

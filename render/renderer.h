@@ -38,7 +38,7 @@ class Renderer {
   // Uploads the scene and compiles the programs; needs a current context. Throws
   // gl::GlError.
   Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-           Method method);
+           Method method, Split split = Split::Metric);
   // Milliseconds spent building and uploading the light trees (lightcuts methods; else 0).
   double bakeMs() const { return bakeMs_; }
 

@@ -1,0 +1,184 @@
+// Light trees (bake/light_tree.h) and their packing: layout, padding, bounds, sums,
+// representatives, determinism.
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "bake/light_tree.h"
+#include "bake/light_tree_layout.h"
+#include "bake/light_tree_pack.h"
+
+namespace manylight {
+namespace {
+
+std::vector<Light> randomLights(int count, bool mixed, std::uint32_t seed = 5) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Light> lights(count);
+  for (int i = 0; i < count; ++i) {
+    Light& l = lights[i];
+    l.type = mixed ? LightType(i % 3) : LightType::Point;
+    l.position = {10.0f * u(rng), 3.0f * u(rng), 10.0f * u(rng)};
+    l.direction = glm::normalize(glm::vec3(u(rng) - 0.5f, -1.0f, u(rng) - 0.5f));
+    l.colour = {u(rng), u(rng), u(rng)};
+    l.intensity = 0.5f + u(rng);
+    l.range = i % 4 == 0 ? 0.0f : 2.0f + 5.0f * u(rng);
+    l.outerConeAngle = 0.2f + 0.6f * u(rng);
+  }
+  return lights;
+}
+
+bool inside(glm::vec3 p, const LightTreeNode& n) {
+  return glm::all(glm::greaterThanEqual(p, n.boxMin)) && glm::all(glm::lessThanEqual(p, n.boxMax));
+}
+
+// Checks every invariant of `tree` against the lights it was built from.
+void checkTree(const LightTree& tree, const std::vector<Light>& lights, const LightOrder& order) {
+  ASSERT_GE(tree.leafCount, 1);
+  ASSERT_EQ(tree.leafCount & (tree.leafCount - 1), 0) << "leaf count is a power of two";
+  ASSERT_EQ(tree.nodes.size(), std::size_t(2 * tree.leafCount - 1));
+  // Leaves: each light of the type exactly once, the rest empty.
+  std::map<int, int> seen;
+  for (int i = tree.firstLeaf(); i < int(tree.nodes.size()); ++i) {
+    const LightTreeNode& n = tree.nodes[i];
+    if (n.empty()) {
+      EXPECT_EQ(n.intensity, glm::vec3(0.0f));
+      continue;
+    }
+    ++seen[n.representative];
+    const Light& l = lights[order.scene[n.representative]];
+    EXPECT_EQ(l.type, tree.type);
+    const glm::vec3 point = l.type == LightType::Directional ? -l.direction : l.position;
+    EXPECT_EQ(n.boxMin, point);
+    EXPECT_EQ(n.boxMax, point);
+    EXPECT_EQ(n.intensity, l.colour * l.intensity);
+  }
+  int ofType = 0;
+  for (const Light& l : lights) ofType += l.type == tree.type;
+  EXPECT_EQ(int(seen.size()), ofType);
+  for (const auto& [slot, count] : seen) EXPECT_EQ(count, 1) << "slot " << slot;
+  // Internal nodes: unions and sums of their children; the representative is a child's.
+  for (int i = tree.firstLeaf() - 1; i >= 0; --i) {
+    const LightTreeNode& n = tree.nodes[i];
+    const LightTreeNode& a = tree.nodes[2 * i + 1];
+    const LightTreeNode& b = tree.nodes[2 * i + 2];
+    EXPECT_EQ(n.empty(), a.empty() && b.empty()) << "node " << i;
+    if (n.empty()) continue;
+    EXPECT_TRUE(n.representative == a.representative || n.representative == b.representative);
+    const glm::vec3 sum = (a.empty() ? glm::vec3(0.0f) : a.intensity) + (b.empty() ? glm::vec3(0.0f) : b.intensity);
+    EXPECT_NEAR(n.intensity.r, sum.r, 1e-5f * sum.r + 1e-7f);
+    for (const LightTreeNode* c : {&a, &b}) {
+      if (c->empty()) continue;
+      EXPECT_TRUE(inside(c->boxMin, n) && inside(c->boxMax, n)) << "node " << i;
+      if (tree.type == LightType::Spot) {
+        const double angle = std::acos(std::clamp(
+            glm::dot(glm::normalize(glm::dvec3(n.axis)), glm::normalize(glm::dvec3(c->axis))), -1.0, 1.0));
+        EXPECT_LE(angle + c->spread, n.spread + 1e-7) << "cone of node " << i;  // acos rounding
+        EXPECT_GE(n.outerAngle, c->outerAngle);
+      }
+      EXPECT_TRUE(n.invRange2 == 0.0f || (c->invRange2 > 0.0f && n.invRange2 <= c->invRange2));
+      EXPECT_GE(n.invRange2Max, c->invRange2Max);
+    }
+  }
+}
+
+TEST(LightTree, EveryCountGivesACompleteTreeHoldingEachLightOnce) {
+  for (int count : {1, 2, 3, 4, 5, 7, 64, 1009, 1023, 1024, 1025}) {
+    for (bool mixed : {false, true}) {
+      const auto lights = randomLights(count, mixed);
+      const LightOrder order = lightOrder(lights);
+      for (Split split : {Split::Metric, Split::LongestAxis}) {
+        TreeOptions options;
+        options.split = split;
+        const auto trees = buildLightTrees(lights, options);
+        ASSERT_EQ(trees.size(), std::size_t(mixed ? std::min(count, 3) : 1)) << count;
+        for (const LightTree& t : trees) {
+          SCOPED_TRACE("count " + std::to_string(count) + " type " + std::to_string(int(t.type)));
+          checkTree(t, lights, order);
+        }
+      }
+    }
+  }
+}
+
+TEST(LightTree, NoLightsGiveNoTrees) { EXPECT_TRUE(buildLightTrees({}).empty()); }
+
+TEST(LightTree, BuildsAreDeterministic) {
+  const auto lights = randomLights(5000, true);
+  const auto a = packLightTrees(buildLightTrees(lights));
+  const auto b = packLightTrees(buildLightTrees(lights));
+  EXPECT_EQ(a.texels, b.texels);
+}
+
+TEST(LightTree, RepresentativeIsChosenInProportionToIntensity) {
+  // Two lights, 3:1: over many seeds the brighter one represents the root 3/4 of the time.
+  std::vector<Light> lights(2);
+  lights[0].position = {0, 0, 0};
+  lights[0].intensity = 3.0f;
+  lights[1].position = {1, 0, 0};
+  lights[1].intensity = 1.0f;
+  int brighter = 0;
+  const int trials = 4000;
+  for (int seed = 0; seed < trials; ++seed) {
+    TreeOptions options;
+    options.seed = std::uint64_t(seed) * 7919u;
+    brighter += buildLightTrees(lights, options)[0].nodes[0].representative == 0;
+  }
+  EXPECT_NEAR(double(brighter) / trials, 0.75, 0.03);
+}
+
+TEST(LightTree, MetricSplitGivesSmallerClustersThanTheLongestAxis) {
+  // Over scattered lights, the sum of the paper's cluster metric over all nodes (what the
+  // metric split minimises split by split) is no larger than with longest-axis splits.
+  const auto lights = randomLights(4096, false, 9);
+  double metric = 0.0, longest = 0.0;
+  for (Split split : {Split::Metric, Split::LongestAxis}) {
+    TreeOptions options;
+    options.split = split;
+    const LightTree t = buildLightTrees(lights, options)[0];
+    double sum = 0.0;
+    for (const LightTreeNode& n : t.nodes) sum += clusterMetric(n, 0.0);
+    (split == Split::Metric ? metric : longest) = sum;
+  }
+  EXPECT_LE(metric, longest);
+}
+
+TEST(LightTreePack, TexelsFollowTheLayout) {
+  const auto lights = randomLights(10, true);
+  const auto trees = buildLightTrees(lights);
+  const PackedTrees packed = packLightTrees(trees);
+  ASSERT_EQ(trees.size(), 3u);
+  auto asFloat = [&](std::size_t word) {
+    float f;
+    std::memcpy(&f, &packed.texels[word], sizeof f);
+    return f;
+  };
+  for (const LightTree& t : trees) {
+    // Texture order: directional 0, point 1, spot 2.
+    const int type = t.type == LightType::Directional ? 0 : t.type == LightType::Point ? 1 : 2;
+    const int stride = t.type == LightType::Spot ? layout::kSpotNodeTexels : layout::kNodeTexels;
+    EXPECT_EQ(packed.leaves[type], t.leafCount);
+    for (std::size_t i = 0; i < t.nodes.size(); ++i) {
+      const LightTreeNode& n = t.nodes[i];
+      const std::size_t w = (std::size_t(packed.base[type]) + stride * i) * 4;
+      EXPECT_EQ(asFloat(w + 0), n.boxMin.x);
+      EXPECT_EQ(std::int32_t(packed.texels[w + 3]), n.representative);
+      EXPECT_EQ(asFloat(w + 6), n.boxMax.z);
+      EXPECT_EQ(asFloat(w + 7), n.invRange2);
+      EXPECT_EQ(asFloat(w + 9), n.intensity.g);
+      if (t.type == LightType::Point) EXPECT_EQ(asFloat(w + 11), n.invRange2Max);
+      if (t.type == LightType::Spot && !n.empty()) {
+        const double theta = std::acos(double(asFloat(w + 11)));
+        EXPECT_GE(theta, std::min(double(n.spread + n.outerAngle), 3.14159) - 1e-6);
+        EXPECT_NEAR(asFloat(w + 15), std::sin(theta), 1e-5);
+        EXPECT_EQ(asFloat(w + 12), n.axis.x);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace manylight
