@@ -61,15 +61,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.method = parseMethod(a.method);
   request.lightcuts.error = a.error;
   request.lightcuts.maxCut = a.maxCut;
-  if (a.errorMode != "node" && a.errorMode != "total") {
-    std::cerr << "manylight: --error-mode: expected node or total, got '" << a.errorMode << "'\n";
-    return kExitUsage;
-  }
   request.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
-  if (a.treeSplit != "metric" && a.treeSplit != "longest-axis") {
-    std::cerr << "manylight: --tree-split: expected metric or longest-axis, got '" << a.treeSplit << "'\n";
-    return kExitUsage;
-  }
   request.lightcuts.split = a.treeSplit == "metric" ? Split::Metric : Split::LongestAxis;
   const gl::Backend backend = gl::parseBackend(a.backend);
   checkOutputPath(a.output);
@@ -161,18 +153,21 @@ int main(int argc, char** argv) {
   render->add_option("--method", r.method,
                      "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
                      "cuts through a light tree), lightcuts-distance (cuts by radius of influence)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
   render->add_option("--error", r.error, "lightcuts: relative error ε of the stopping rule")
       ->capture_default_str()
       ->check(CLI::Range(1e-6f, 1.0f));
   render->add_option("--error-mode", r.errorMode,
                      "lightcuts: node (the paper's rule: each node's bound ≤ ε·estimate) or total "
                      "(guaranteed: the sum of the cut's error bounds ≤ ε·estimate)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::IsMember({"node", "total"}));
   render->add_option("--tree-split", r.treeSplit,
                      "lightcuts: how the light trees pair lights: metric (the split with the smallest "
                      "cluster metric) or longest-axis (the k-d baseline)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::IsMember({"metric", "longest-axis"}));
   render->add_option("--max-cut", r.maxCut, "lightcuts: most nodes in a pixel's cut")
       ->capture_default_str()
       ->check(CLI::Range(1, kMaxCutLimit));

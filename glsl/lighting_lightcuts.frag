@@ -149,11 +149,14 @@ bool nodeBounds(int tree, Node n, out vec3 upper, out vec3 lower) {
 #ifdef HAS_SPECULAR
   if (s.specular != vec3(0.0)) {
     vec3 mirror = reflect(-s.view, s.normal);
-    float rUp = min(cosineUpper(mirror, p, n, dMin), sphereCosines(mirror, p, n).x);
+    // Clamped: the sphere's cosine may be negative, and pow of a negative base is NaN.
+    float rUp = clamp(min(cosineUpper(mirror, p, n, dMin), sphereCosines(mirror, p, n).x), 0.0, 1.0);
     m += s.specular * ((s.exponent + 2.0) / (2.0 * kPi) * pow(rUp, s.exponent));
   }
 #endif
   upper = n.intensity * m * (cosUp * gUp);
+  // A bound that overflowed or went NaN bounds nothing (and max() would hide a NaN).
+  if (any(isnan(upper)) || any(isinf(upper))) return false;
   if (gLow > 0.0) {
     float cosLow = max(cosineLower(s.normal, p, n, sqrt(d2Max)), sphere.y);
     lower = n.intensity * (s.albedo / kPi) * (cosLow * gLow);

@@ -178,8 +178,36 @@ TEST(Cli, BadInputsFailWithOneLineAndNoOutput) {
   }
 }
 
+TEST(Cli, LightcutsWritesCutStatistics) {
+  RoomOptions o;
+  o.lightCount = 300;
+  const std::string scene = roomScene(o);
+  const fs::path dir = testFolder();
+  const ProcessResult r = manylight("render " + scene + " -o " + (dir / "a.exr").string() +
+                                    " --size 64x48 --method lightcuts --error 0.05 --error-mode total --max-cut 500"
+                                    " --stats " + (dir / "stats.json").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto stats = nlohmann::json::parse(readFile(dir / "stats.json"));
+  EXPECT_EQ(stats["method"], "lightcuts");
+  EXPECT_EQ(stats["error_mode"], "total");
+  EXPECT_EQ(stats["max_cut"], 500);
+  EXPECT_DOUBLE_EQ(stats["error"].get<double>(), 0.05f);
+  EXPECT_GT(stats["bake_ms"].get<double>(), 0.0);
+  EXPECT_GE(stats["avg_cut_size"].get<double>(), 1.0);
+  EXPECT_LE(stats["avg_cut_size"].get<double>(), 500.0);
+  EXPECT_LE(stats["max_cut_size"].get<int>(), 500);
+  EXPECT_GE(stats["pixels_at_max_cut"].get<int>(), 0);
+  EXPECT_GT(stats["light_evaluations_per_pixel"].get<double>(), 0.0);
+  EXPECT_GT(stats["covered_pixels"].get<int>(), 64 * 48 / 2);
+}
+
 TEST(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(manylight("render").exitCode, 2);
+  EXPECT_EQ(manylight("render x.gltf -o y.png --method nope").exitCode, 2);
+  EXPECT_EQ(manylight("render x.gltf -o y.png --error-mode nope").exitCode, 2);
+  EXPECT_EQ(manylight("render x.gltf -o y.png --tree-split nope").exitCode, 2);
+  EXPECT_EQ(manylight("render x.gltf -o y.png --error 0").exitCode, 2);
+  EXPECT_EQ(manylight("render x.gltf -o y.png --max-cut 0").exitCode, 2);
   EXPECT_EQ(manylight("render x.gltf -o y.png --size 0x5").exitCode, 2);
   EXPECT_EQ(manylight("render x.gltf -o y.png --frobnicate").exitCode, 2);
   EXPECT_EQ(manylight("--help").exitCode, 0);

@@ -227,6 +227,10 @@ TEST(Shaders, EveryLightingVariantCompilesAndLinks) {
         << "variant " << mask;
   }
   EXPECT_NO_THROW(gl::Program("gbuffer.vert", "gbuffer.frag", {}, {"gPosition"}));
+  for (const std::vector<std::string>& defines : std::vector<std::vector<std::string>>{
+           {}, {"HAS_SPECULAR"}, {"DISTANCE"}, {"DISTANCE", "HAS_SPECULAR"}}) {
+    EXPECT_NO_THROW(gl::Program("fullscreen.vert", "lighting_lightcuts.frag", defines, {"oRadiance", "oCutStats"}));
+  }
 }
 
 }  // namespace
