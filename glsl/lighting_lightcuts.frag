@@ -171,6 +171,7 @@ vec3 estimateSum;  // Σ of the cut's estimates (leaves exact)
 vec3 errorSum;     // Σ of the cut's error bounds (upper − lower), bounded nodes only
 int cutSize;
 int unboundedNodes;  // nodes kept in the cut although unbounded (only when the cut is full)
+float largestMeasure;  // the largest measure among the cut's bounded nodes
 bool atMax;          // the cut could not be refined further for want of room
 
 // Most recently computed representative term, reused when the next node shares it (a
@@ -207,6 +208,7 @@ void cutPass(float tau, int measure) {
   errorSum = vec3(0.0);
   cutSize = 0;
   unboundedNodes = 0;
+  largestMeasure = 0.0;
   atMax = false;
   for (int tree = 0; tree < 3; ++tree) {
     int leaves = uTreeLeaves[tree];
@@ -241,6 +243,7 @@ void cutPass(float tau, int measure) {
           atMax = atMax || wanted;
           if (bounded) {
             errorSum += error;
+            largestMeasure = max(largestMeasure, maxOf(error));
           } else {
             ++unboundedNodes;
           }
@@ -266,34 +269,72 @@ void cutPass(float tau, int measure) {
   }
 }
 
-// The node rule: every node of the cut has an upper bound ≤ ε × the pixel's estimate. A pass
-// refines against the previous pass's estimate (the first against the roots'); another
-// pass follows while the estimate fell, since the threshold was then too loose.
+// A pass that fills the cut stops refining wherever the depth-first walk happens to be,
+// leaving the rest of the tree coarse; the previous pass, complete at a looser threshold,
+// is the better answer then. Both are counted as at the maximum.
+vec3 keptEstimate;
+int keptCut;
+bool keptComplete;
+
+void keepPass() {
+  keptEstimate = estimateSum;
+  keptCut = cutSize;
+  keptComplete = !atMax;
+}
+
+void fallBackIfFull() {
+  if (atMax && keptComplete) {
+    estimateSum = keptEstimate;
+    cutSize = keptCut;
+  }
+}
+
+// Thresholds fall by at most kStep per pass, so the cut grows from its largest bounds
+// down, much as the paper's priority order would grow it, and a pass that fills the cut
+// falls back to a balanced one.
+const float kStep = 32.0;
+
+// The node rule: every node of the cut has an upper bound ≤ ε × the pixel's estimate. Each
+// pass refines against max(ε × the previous estimate, the previous threshold / kStep) and
+// the rule holds once a pass's threshold is ≤ ε × its own estimate.
 void nodeRuleCut() {
   cutPass(kUnbounded * 0.5, 0);  // the roots (and unbounded nodes below them)
-  bool done = false;
-  for (int pass = 0; pass < 4 && passFits(); ++pass) {
-    vec3 previous = estimateSum;
-    cutPass(uError * maxOf(previous), 0);
-    done = atMax || maxOf(estimateSum) >= maxOf(previous);
-    if (done) break;
+  keepPass();
+  float tau = largestMeasure;
+  while (passFits()) {
+    tau = max(uError * maxOf(keptEstimate), tau / kStep);
+    cutPass(tau, 0);
+    if (atMax) {
+      fallBackIfFull();
+      return;
+    }
+    if (tau <= uError * maxOf(estimateSum)) return;
+    keepPass();
   }
-  atMax = atMax || !done;
+  atMax = true;  // out of loop iterations before the rule held
 }
 
 // The total rule: Σ (upper − lower) ≤ ε · (estimate − Σ (upper − lower)), or ≤ the absolute
 // floor. Passes lower a common threshold on each node's error until the sum holds.
 void totalRuleCut() {
   cutPass(kUnbounded * 0.5, 1);
-  float tau = uError * maxOf(estimateSum) / 16.0;
+  keepPass();
+  float tau = largestMeasure;
   while (passFits()) {
-    cutPass(tau, 1);
     float b = maxOf(errorSum);
     float allowed = uError * maxOf(estimateSum - errorSum);
-    if (atMax || (unboundedNodes == 0 && (b <= allowed || b <= kAbsoluteFloor))) return;
-    tau *= clamp(0.5 * allowed / b, 0.05, 0.5);
+    tau *= clamp(0.5 * allowed / max(b, 1e-30), 1.0 / kStep, 0.5);
+    cutPass(tau, 1);
+    if (atMax) {
+      fallBackIfFull();
+      return;
+    }
+    b = maxOf(errorSum);
+    allowed = uError * maxOf(estimateSum - errorSum);
+    if (unboundedNodes == 0 && (b <= allowed || b <= kAbsoluteFloor)) return;
+    keepPass();
   }
-  atMax = true;  // out of iterations before the rule held: counted with the full cuts
+  atMax = true;  // out of loop iterations before the rule held
 }
 
 void main() {
