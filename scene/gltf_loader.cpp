@@ -11,6 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "scene/asset_files.h"
 #include "scene/error.h"
 #include "scene/gltf_convert.h"
 #include "scene/image_decode.h"
@@ -245,22 +246,45 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     const bool binary = isBinaryGltf(path);
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(decodeImageForTinygltf, nullptr);
+    // Every file read goes through AssetFiles; no shell expansion of paths (tinygltf's
+    // default ExpandFilePath runs wordexp), no writing.
+    const std::string base = path.find_last_of("/\\") == std::string::npos ? "" : path.substr(0, path.find_last_of("/\\"));
+    AssetFiles files(path, base, options.maxFileBytes);
+    tinygltf::FsCallbacks callbacks;
+    callbacks.FileExists = [](const std::string& p, void* user) { return static_cast<AssetFiles*>(user)->exists(p); };
+    callbacks.ExpandFilePath = [](const std::string& p, void*) { return p; };
+    callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& p, void* user) {
+      return static_cast<AssetFiles*>(user)->read(out, err, p);
+    };
+    callbacks.WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
+      return false;
+    };
+    callbacks.user_data = &files;
+    parser.SetFsCallbacks(callbacks);
     tinygltf::Model model;
     std::string err, warn;
     std::string failure;
     try {
       const bool ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
                              : parser.LoadASCIIFromFile(&model, &err, &warn, path);
-      if (!ok) failure = oneLine(err.empty() ? "not a valid glTF file" : err);
+      if (!ok) {
+        failure = !files.refusal().empty() ? files.refusal()
+                  : !files.missing().empty() ? files.missing()
+                                             : oneLine(err.empty() ? "not a valid glTF file" : err);
+      }
     } catch (const std::bad_alloc&) {
       failure = "out of memory while parsing: a size in the file is too large";
     } catch (const std::exception& e) {
       failure = oneLine(e.what());
     }
+    // tinygltf treats an unreadable image as a warning; a refused URI is an error all the same.
+    if (failure.empty() && !files.refusal().empty()) failure = files.refusal();
     if (!failure.empty()) {
       if (!binary) checkRequirementsInJson(path);  // throws when the real reason is a requirement
       throw SceneError(failure);
     }
+    // A missing image leaves its textures out; say so.
+    if (!files.missing().empty()) scene.warnings.push_back(files.missing() + "; its textures are left out");
     checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
     gltf::Converter convert(model, scene);
     SceneWalker(model, scene, convert, options).walk();

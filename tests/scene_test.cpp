@@ -1,4 +1,6 @@
 // glTF loading into scene/ types: spec defaults, transforms, lights, cameras, materials.
+#include <sys/stat.h>
+
 #include <cmath>
 #include <fstream>
 
@@ -137,6 +139,47 @@ TEST(Scene, NoScenesShowsRootNodesAndUnknownTypesFail) {
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()), bad + ": light 0: unknown type 'area'");
   }
+}
+
+}  // namespace
+}  // namespace manylight::testing
+
+namespace manylight::testing {
+namespace {
+
+// The message loadGltf throws for `path`, or "" when it loads.
+std::string loadError(const std::string& path, const LoadOptions& options = {}) {
+  try {
+    loadGltf(path, options);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(AssetFiles, LinksOutOfTheFolderFifosAndOversizedFilesAreRefused) {
+  namespace fs = std::filesystem;
+  const fs::path outside = testFolder() / "outside.bin";
+  std::ofstream(outside) << "12345678";
+  const fs::path assets = testFolder() / "assets";
+  fs::create_directories(assets);
+  fs::create_symlink(outside, assets / "link.bin");
+  ASSERT_EQ(::mkfifo((assets / "fifo.bin").c_str(), 0600), 0);
+  std::ofstream(assets / "big.bin") << std::string(4096, 'x');
+  auto scene = [&](const std::string& uri, int bytes = 8) {
+    const fs::path p = assets / "s.gltf";
+    std::ofstream(p) << R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" << uri << R"(", "byteLength": )"
+                     << bytes << "}]}";
+    return p.string();
+  };
+  const std::string s = scene("link.bin");
+  EXPECT_EQ(loadError(s), s + ": URI 'link.bin': leads outside the scene's folder (through a link)");
+  EXPECT_EQ(loadError(scene("fifo.bin")), s + ": URI 'fifo.bin': not a regular file");  // would block
+  LoadOptions small;
+  small.maxFileBytes = 1024;
+  EXPECT_EQ(loadError(scene("big.bin", 4096), small), s + ": the scene's files exceed the limit of 1024 bytes");
+  EXPECT_EQ(loadError(scene("big.bin", 4096)), "");
+  EXPECT_EQ(loadError(scene("sub/../big.bin", 4096)), "") << "a path that stays inside is fine";
 }
 
 }  // namespace

@@ -1,0 +1,42 @@
+#pragma once
+// The only way the glTF loader reads files. A scene is untrusted input: its external URIs
+// may name only regular files inside the scene's own folder. Absolute paths, `..` escapes
+// (also through symbolic links) and URI schemes other than data: (which tinygltf decodes
+// itself, without reading files) are refused, and all bytes read for one scene count
+// against a limit before they are read.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace manylight {
+
+class AssetFiles {
+ public:
+  // `scene`: the glTF/GLB file; `base`: the folder prefix tinygltf joins URIs to (its
+  // GetBaseDir of `scene`); `maxBytes`: bytes this scene may read in all.
+  AssetFiles(const std::string& scene, const std::string& base, std::uintmax_t maxBytes);
+
+  // For tinygltf's FsCallbacks. `path` is the scene itself or base + "/" + URI. exists()
+  // says yes to everything, so that read() gets to name the problem.
+  bool exists(const std::string& path);
+  bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path);
+
+  // The first refusal (outside the folder, not a regular file, over the byte limit) as a
+  // one-line reason naming the URI; empty if none. Missing files are not refusals.
+  const std::string& refusal() const { return refusal_; }
+  // The first missing file ("URI 'x.png': no such file"); empty if none.
+  const std::string& missing() const { return missing_; }
+
+ private:
+  // Why `path` may not be read, or "" (and its resolved location in *resolved).
+  std::string check(const std::string& path, std::filesystem::path* resolved) const;
+
+  std::string scene_, base_;
+  std::filesystem::path root_;  // canonical scene folder
+  std::uintmax_t bytesLeft_;
+  std::uintmax_t maxBytes_;
+  std::string refusal_, missing_;
+};
+
+}  // namespace manylight
