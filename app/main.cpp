@@ -45,6 +45,7 @@ struct RenderArgs {
   int camera = -1;
   float exposure = 0.0f;
   std::size_t lightBudget = 1u << 20;
+  LoadOptions limits;
   bool verbose = false;
 };
 
@@ -67,7 +68,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   checkOutputPath(a.output);
 
   const auto loadStart = Clock::now();
-  LoadOptions options;
+  LoadOptions options = a.limits;
   options.lightBudget = a.lightBudget;
   const Scene scene = loadGltf(a.scene, options);
   const double loadMs = msSince(loadStart);
@@ -180,6 +181,19 @@ int main(int argc, char** argv) {
   render->add_option("--light-budget", r.lightBudget, "Most lights a scene may have")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 26));
+  render->add_option("--max-file-bytes", r.limits.maxFileBytes,
+                     "Most bytes a scene may read: the glTF/GLB and its external files")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  render->add_option("--max-texture-size", r.limits.maxTextureDimension, "Largest texture width or height")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  render->add_option("--max-texture-pixels", r.limits.maxTexturePixels, "Most pixels in one texture")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  render->add_option("--max-triangles", r.limits.maxTriangles, "Most triangles over all meshes")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
   render->add_flag("-v,--verbose", r.verbose, "Say which context was chosen and how long things took");
   try {

@@ -30,11 +30,13 @@ std::string oneLine(std::string s) {
   return s;
 }
 
+// `user`: the LoadOptions.
 bool decodeImageForTinygltf(tinygltf::Image* image, const int index, std::string* err,
-                            std::string*, int, int, const unsigned char* bytes, int size, void*) {
+                            std::string*, int, int, const unsigned char* bytes, int size, void* user) {
+  const LoadOptions& options = *static_cast<const LoadOptions*>(user);
   try {
-    DecodedImage d =
-        decodeImage(bytes, size_t(std::max(size, 0)), "image " + std::to_string(index));
+    DecodedImage d = decodeImage(bytes, size_t(std::max(size, 0)), "image " + std::to_string(index),
+                                 options.maxTextureDimension, options.maxTexturePixels);
     image->width = d.width;
     image->height = d.height;
     image->component = 4;
@@ -226,6 +228,27 @@ class SceneWalker {
   std::vector<bool> cameraPlaced_;
 };
 
+// Throws when the meshes hold more triangles than `limit`, from the accessor counts alone.
+void checkTriangleCount(const tinygltf::Model& model, std::int64_t limit) {
+  std::int64_t triangles = 0;
+  for (const tinygltf::Mesh& mesh : model.meshes) {
+    for (const tinygltf::Primitive& p : mesh.primitives) {
+      int accessor = p.indices;
+      if (accessor < 0) {
+        const auto it = p.attributes.find("POSITION");
+        accessor = it == p.attributes.end() ? -1 : it->second;
+      }
+      if (accessor < 0 || accessor >= int(model.accessors.size())) continue;
+      const std::int64_t n = std::int64_t(model.accessors[accessor].count);
+      if (p.mode == TINYGLTF_MODE_TRIANGLES) triangles += n / 3;
+      if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN) triangles += std::max<std::int64_t>(n - 2, 0);
+    }
+  }
+  if (triangles > limit) {
+    throw SceneError(std::to_string(triangles) + " triangles exceed the limit of " + std::to_string(limit));
+  }
+}
+
 bool isBinaryGltf(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   char magic[4] = {};
@@ -245,7 +268,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     }
     const bool binary = isBinaryGltf(path);
     tinygltf::TinyGLTF parser;
-    parser.SetImageLoader(decodeImageForTinygltf, nullptr);
+    parser.SetImageLoader(decodeImageForTinygltf, const_cast<LoadOptions*>(&options));
     // Every file read goes through AssetFiles; no shell expansion of paths (tinygltf's
     // default ExpandFilePath runs wordexp), no writing.
     const std::string base = path.find_last_of("/\\") == std::string::npos ? "" : path.substr(0, path.find_last_of("/\\"));
@@ -286,6 +309,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     // A missing image leaves its textures out; say so.
     if (!files.missing().empty()) scene.warnings.push_back(files.missing() + "; its textures are left out");
     checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
+    checkTriangleCount(model, options.maxTriangles);
     gltf::Converter convert(model, scene);
     SceneWalker(model, scene, convert, options).walk();
   } catch (const SceneError& e) {

@@ -13,10 +13,15 @@ struct LoadOptions {
   std::size_t lightBudget = 1u << 20;
   // Bytes the scene may read in all: the glTF/GLB file and its external buffers and images.
   std::uintmax_t maxFileBytes = std::uintmax_t(1) << 30;
+  // Textures: largest width or height, and most pixels (checked before decoding).
+  std::int64_t maxTextureDimension = 16384;
+  std::int64_t maxTexturePixels = std::int64_t(1) << 26;
+  // Triangles over all meshes (checked before any vertex is read).
+  std::int64_t maxTriangles = std::int64_t(1) << 26;
 };
 
 // Throws SceneError ("FILE: problem") when the file cannot be read, is not valid glTF 2.0,
-// requires an extension or version we do not support, or exceeds the light budget.
+// requires an extension or version we do not support, or exceeds a limit of `options`.
 // Points and lines are skipped with a warning in Scene::warnings.
 Scene loadGltf(const std::string& path, const LoadOptions& options = {});
 

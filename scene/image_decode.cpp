@@ -7,7 +7,8 @@
 
 namespace manylight {
 
-DecodedImage decodeImage(const unsigned char* bytes, std::size_t size, const std::string& what) {
+DecodedImage decodeImage(const unsigned char* bytes, std::size_t size, const std::string& what,
+                         std::int64_t maxDimension, std::int64_t maxPixels) {
   // OpenImageIO picks the reader from a file extension; choose it from the magic number.
   const char* extension = nullptr;
   if (size >= 8 && std::memcmp(bytes, "\x89PNG", 4) == 0) {
@@ -19,7 +20,7 @@ DecodedImage decodeImage(const unsigned char* bytes, std::size_t size, const std
   }
   RawImage<std::uint8_t> raw;
   std::string error;
-  if (!imageIo().decode8(bytes, size, extension, &raw, &error)) {
+  if (!imageIo().decode8(bytes, size, extension, maxDimension, maxPixels, &raw, &error)) {
     throw SceneError(what + ": cannot decode image: " + error);
   }
   const int channels = std::min(raw.channels, 4);

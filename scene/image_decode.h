@@ -13,7 +13,9 @@ struct DecodedImage {
   std::vector<std::uint8_t> rgba;  // 8-bit RGBA, row 0 at the top
 };
 
-// Throws SceneError naming `what` when the bytes are not an image OpenImageIO can read.
-DecodedImage decodeImage(const unsigned char* bytes, std::size_t size, const std::string& what);
+// Throws SceneError naming `what` when the bytes are not an image OpenImageIO can read, or
+// when the image's header gives a size over the limits (checked before decoding).
+DecodedImage decodeImage(const unsigned char* bytes, std::size_t size, const std::string& what,
+                         std::int64_t maxDimension, std::int64_t maxPixels);
 
 }  // namespace manylight

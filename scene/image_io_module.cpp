@@ -12,14 +12,22 @@ bool fail(std::string* error, const std::string& reason) {
   return false;
 }
 
-bool decode8(const unsigned char* bytes, std::size_t size, const char* extension,
-             RawImage<std::uint8_t>* out, std::string* error) {
+bool decode8(const unsigned char* bytes, std::size_t size, const char* extension, std::int64_t maxDimension,
+             std::int64_t maxPixels, RawImage<std::uint8_t>* out, std::string* error) {
   OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes), size);
   auto in = OIIO::ImageInput::open(std::string("image") + extension, nullptr, &reader);
   if (!in) return fail(error, OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1) {
     return fail(error, "image has no pixels");
+  }
+  if (spec.width > maxDimension || spec.height > maxDimension) {
+    return fail(error, std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                           " exceeds the texture dimension limit of " + std::to_string(maxDimension));
+  }
+  if (std::int64_t(spec.width) * spec.height > maxPixels) {
+    return fail(error, std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                           " exceeds the texture limit of " + std::to_string(maxPixels) + " pixels");
   }
   out->width = spec.width;
   out->height = spec.height;

@@ -26,11 +26,14 @@ struct RawImage {
 
 struct ImageIoApi {
   // Bumped whenever this struct changes; the loader refuses a module built for another.
-  static constexpr int kVersion = 1;
+  static constexpr int kVersion = 2;
   int version;
   // Decodes an encoded image held in memory; `extension` (".png", ".jpg") picks the reader.
+  // Refuses, from the header and before decoding, an image wider or taller than
+  // `maxDimension` or with more than `maxPixels` pixels.
   bool (*decode8)(const unsigned char* bytes, std::size_t size, const char* extension,
-                  RawImage<std::uint8_t>* out, std::string* error);
+                  std::int64_t maxDimension, std::int64_t maxPixels, RawImage<std::uint8_t>* out,
+                  std::string* error);
   // Encodes 8-bit pixels as a PNG in memory.
   bool (*encodePng8)(const RawImage<std::uint8_t>& image, std::vector<unsigned char>* png,
                      std::string* error);

@@ -211,6 +211,30 @@ TEST(Cli, LightcutsWritesCutStatistics) {
   EXPECT_GT(stats["covered_pixels"].get<int>(), 64 * 48 / 2);
 }
 
+TEST(Cli, LimitsRefuseScenesBeforeReadingThem) {
+  RoomOptions o;
+  o.lightCount = 2;
+  const std::string scene = roomScene(o);  // textured: an 8×8 checker
+  const std::string out = (testFolder() / "x.png").string();
+  struct Limit {
+    std::string args, message;
+  };
+  const Limit limits[] = {
+      {"--max-triangles 100", "triangles exceed the limit of 100"},
+      {"--max-texture-size 4", "image 0: cannot decode image: 8x8 exceeds the texture dimension limit of 4"},
+      {"--max-texture-pixels 63", "image 0: cannot decode image: 8x8 exceeds the texture limit of 63 pixels"},
+      {"--max-file-bytes 100", "the scene's files exceed the limit of 100 bytes"},
+      {"--light-budget 1", "more than 1 lights exceed the light budget (--light-budget)"},
+  };
+  for (const Limit& l : limits) {
+    const ProcessResult r = manylight("render " + scene + " -o " + out + " " + l.args);
+    EXPECT_EQ(r.exitCode, 1) << l.args;
+    EXPECT_EQ(r.err.rfind("manylight: " + scene + ": ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(l.message), std::string::npos) << l.args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
 TEST(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(manylight("render").exitCode, 2);
   EXPECT_EQ(manylight("render x.gltf -o y.png --method nope").exitCode, 2);
