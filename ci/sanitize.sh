@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# CI: the scene tests and the corpus walk under AddressSanitizer + UndefinedBehaviorSanitizer,
+# then the glTF loader's libFuzzer target for a bounded time, seeded with ../shared/scenes.
+# Usage: ci/sanitize.sh [FUZZ_SECONDS]   (default 60)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DMANYLIGHT_SANITIZE=ON -DMANYLIGHT_FUZZ=ON -DMANYLIGHT_BENCH=OFF
+cmake --build build-asan --target manylight_tests manylight_fuzz_gltf manylight_imageio
+# Slow unwinding gives full allocation stacks, which the third-party suppressions match.
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:fast_unwind_on_malloc=0
+export LSAN_OPTIONS="suppressions=$PWD/ci/lsan-suppressions.txt"
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+build-asan/bin/manylight_tests
+
+# Fuzzing: seeds are the corpus's small files, copied to a scratch folder (never the repo).
+corpus="$(mktemp -d)"
+trap 'rm -rf "$corpus"' EXIT
+if [ -d ../shared/scenes ]; then
+  find ../shared/scenes -type f \( -name '*.gltf' -o -name '*.glb' \) -size -256k -exec cp -t "$corpus" {} + 2>/dev/null || true
+fi
+cp scenes/*.gltf "$corpus"/
+build-asan/bin/manylight_fuzz_gltf -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  -artifact_prefix=build-asan/ "$corpus"
