@@ -110,6 +110,9 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
         {"load_ms", loadMs},
         {"render_ms", out.frame.renderMs},
         {"total_ms", msSince(processStart)},
+        {"degenerate_triangles", scene.topology.degenerateTriangles},
+        {"boundary_edges", scene.topology.boundaryEdges},
+        {"non_manifold_edges", scene.topology.nonManifoldEdges},
     };
     if (request.method != Method::Reference) {
       const CutStats& c = out.frame.cuts;
@@ -194,6 +197,11 @@ int main(int argc, char** argv) {
   render->add_option("--max-triangles", r.limits.maxTriangles, "Most triangles over all meshes")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  render->add_option("--crease-angle", r.limits.creaseAngleDegrees,
+                     "Degrees: normals built for meshes without them are smooth across gentler edges, "
+                     "split across sharper ones")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 180.0f));
   render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
   render->add_flag("-v,--verbose", r.verbose, "Say which context was chosen and how long things took");
   try {

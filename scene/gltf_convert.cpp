@@ -6,6 +6,7 @@
 
 #include "scene/error.h"
 #include "scene/gltf_accessors.h"
+#include "scene/half_edge.h"
 
 namespace manylight::gltf {
 namespace {
@@ -39,25 +40,29 @@ std::vector<std::uint32_t> triangulate(int mode, std::vector<std::uint32_t> idx)
   return out;
 }
 
-// Gives every triangle its own three vertices with the face normal: the normals glTF
-// prescribes ("flat normals") when a primitive has none.
-void makeFlatNormals(Primitive& p) {
-  Primitive flat;
-  flat.material = p.material;
-  for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
-    const std::uint32_t a = p.indices[t], b = p.indices[t + 1], c = p.indices[t + 2];
-    glm::vec3 n = glm::cross(p.positions[b] - p.positions[a], p.positions[c] - p.positions[a]);
-    const float len = glm::length(n);
-    n = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
-    for (std::uint32_t v : {a, b, c}) {
-      flat.indices.push_back(std::uint32_t(flat.positions.size()));
-      flat.positions.push_back(p.positions[v]);
-      flat.normals.push_back(n);
-      if (!p.texcoords.empty()) flat.texcoords.push_back(p.texcoords[v]);
-      if (!p.colours.empty()) flat.colours.push_back(p.colours[v]);
-    }
+// Drops degenerate triangles, counts boundary and non-manifold edges into `topology`, and
+// builds creased normals when the primitive has none (glTF prescribes flat ones; a crease
+// angle gives those on sharp edges and smooth shading on curved surfaces).
+void buildTopology(Primitive& p, float creaseRadians, MeshTopology& topology) {
+  const HalfEdgeMesh m = buildHalfEdgeMesh(p.positions, p.indices);
+  topology.degenerateTriangles += m.degenerateTriangles;
+  topology.boundaryEdges += m.boundaryEdges;
+  topology.nonManifoldEdges += m.nonManifoldEdges;
+  if (!p.normals.empty()) {
+    p.indices = m.triangles;
+    return;
   }
-  p = std::move(flat);
+  const CreasedNormals n = creasedNormals(m, p.positions, creaseRadians);
+  Primitive out;
+  out.material = p.material;
+  out.indices = n.indices;
+  out.normals = n.normals;
+  for (std::uint32_t v : n.source) {
+    out.positions.push_back(p.positions[v]);
+    if (!p.texcoords.empty()) out.texcoords.push_back(p.texcoords[v]);
+    if (!p.colours.empty()) out.colours.push_back(p.colours[v]);
+  }
+  p = std::move(out);
 }
 
 template <typename V>
@@ -93,12 +98,13 @@ glm::mat4 withoutScale(const glm::mat4& world) {
   return m;
 }
 
-Converter::Converter(const tinygltf::Model& model, Scene& scene)
+Converter::Converter(const tinygltf::Model& model, Scene& scene, float creaseRadians)
     : model_(model),
       scene_(scene),
       meshes_(model.meshes.size(), -1),
       materials_(model.materials.size(), -1),
-      textures_(model.textures.size(), -1) {}
+      textures_(model.textures.size(), -1),
+      creaseRadians_(creaseRadians) {}
 
 int Converter::mesh(int index) {
   checkIndex(index, model_.meshes, "mesh");
@@ -181,7 +187,7 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
     for (std::size_t i = 0; i < count; ++i) idx[i] = std::uint32_t(i);
   }
   p.indices = triangulate(mode, std::move(idx));
-  if (p.normals.empty()) makeFlatNormals(p);
+  buildTopology(p, creaseRadians_, scene_.topology);
   return p;
 }
 

@@ -16,7 +16,8 @@ glm::mat4 withoutScale(const glm::mat4& world);
 
 class Converter {
  public:
-  Converter(const tinygltf::Model& model, Scene& scene);
+  // `creaseRadians`: for normals built where a primitive has none (scene/half_edge.h).
+  Converter(const tinygltf::Model& model, Scene& scene, float creaseRadians);
 
   // Index into Scene::meshes of glTF mesh `index`. Throws SceneError.
   int mesh(int index);
@@ -33,6 +34,7 @@ class Converter {
   const tinygltf::Model& model_;
   Scene& scene_;
   std::vector<int> meshes_, materials_, textures_;  // glTF index → scene index, −1 if not yet
+  float creaseRadians_;
 };
 
 }  // namespace manylight::gltf

@@ -310,10 +310,14 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     if (!files.missing().empty()) scene.warnings.push_back(files.missing() + "; its textures are left out");
     checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
     checkTriangleCount(model, options.maxTriangles);
-    gltf::Converter convert(model, scene);
+    gltf::Converter convert(model, scene, glm::radians(options.creaseAngleDegrees));
     SceneWalker(model, scene, convert, options).walk();
   } catch (const SceneError& e) {
     throw SceneError(path + ": " + e.what());
+  }
+  if (scene.topology.degenerateTriangles > 0) {
+    scene.warnings.push_back(std::to_string(scene.topology.degenerateTriangles) +
+                             " degenerate triangles (repeated vertices or zero area) dropped");
   }
   return scene;
 }

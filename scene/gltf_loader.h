@@ -18,6 +18,9 @@ struct LoadOptions {
   std::int64_t maxTexturePixels = std::int64_t(1) << 26;
   // Triangles over all meshes (checked before any vertex is read).
   std::int64_t maxTriangles = std::int64_t(1) << 26;
+  // Normals built where a primitive has none are smooth across edges whose dihedral angle
+  // is below this, split across sharper ones.
+  float creaseAngleDegrees = 60.0f;
 };
 
 // Throws SceneError ("FILE: problem") when the file cannot be read, is not valid glTF 2.0,

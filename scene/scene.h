@@ -53,6 +53,13 @@ struct Primitive {
   int material = -1;  // index into Scene::materials; -1 for the default material
 };
 
+// What the half-edge pass (scene/half_edge.h) found over all primitives.
+struct MeshTopology {
+  long long degenerateTriangles = 0;  // dropped
+  long long boundaryEdges = 0;
+  long long nonManifoldEdges = 0;
+};
+
 struct Mesh {
   std::vector<Primitive> primitives;
 };
@@ -87,6 +94,7 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<Camera> cameras;  // one per glTF camera, placed by the first node using it
   std::vector<std::string> warnings;
+  MeshTopology topology;
 
   // World-space bounds of all instanced geometry.
   Bounds bounds() const;

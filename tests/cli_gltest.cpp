@@ -59,7 +59,8 @@ TEST(Cli, RendersPngAndExrWithStats) {
   EXPECT_EQ(png.height, 60);
   const auto stats = nlohmann::json::parse(readFile(dir / "stats.json"));
   for (const char* key : {"method", "backend", "renderer", "width", "height", "lights", "load_ms",
-                          "render_ms", "total_ms"}) {
+                          "render_ms", "total_ms", "degenerate_triangles", "boundary_edges",
+                          "non_manifold_edges"}) {
     EXPECT_TRUE(stats.contains(key)) << key;
   }
   EXPECT_EQ(stats["method"], "reference");
