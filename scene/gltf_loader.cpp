@@ -249,6 +249,50 @@ void checkTriangleCount(const tinygltf::Model& model, std::int64_t limit) {
   }
 }
 
+// Whole-file checks, for the parts the walk may never reach: the node graph is a forest
+// (no cycles, no node with two parents), every buffer view lies inside its buffer, and every
+// light is valid. A file that breaks them is invalid glTF, used or not.
+void checkStructure(const tinygltf::Model& model, const gltf::Converter& convert) {
+  const int nodes = int(model.nodes.size());
+  std::vector<int> parent(nodes, -1);
+  for (int n = 0; n < nodes; ++n) {
+    for (int c : model.nodes[n].children) {
+      if (c < 0 || c >= nodes) throw SceneError("node " + std::to_string(n) + ": child " + std::to_string(c) + " does not exist");
+      if (parent[c] >= 0) {
+        throw SceneError("node " + std::to_string(c) + " has two parents (nodes " + std::to_string(parent[c]) + " and " +
+                         std::to_string(n) + ")");
+      }
+      parent[c] = n;
+    }
+  }
+  // With one parent each, a node is in a cycle exactly when climbing never ends at a root.
+  std::vector<char> state(nodes, 0);  // 0 unknown, 1 on the current climb, 2 reaches a root
+  for (int n = 0; n < nodes; ++n) {
+    std::vector<int> climb;
+    int v = n;
+    while (v >= 0 && state[v] == 0) {
+      state[v] = 1;
+      climb.push_back(v);
+      v = parent[v];
+    }
+    if (v >= 0 && state[v] == 1) throw SceneError("node " + std::to_string(v) + " is part of a cycle");
+    for (int c : climb) state[c] = 2;
+  }
+  for (std::size_t i = 0; i < model.bufferViews.size(); ++i) {
+    const tinygltf::BufferView& view = model.bufferViews[i];
+    if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) {
+      throw SceneError("bufferView " + std::to_string(i) + ": buffer " + std::to_string(view.buffer) + " does not exist");
+    }
+    const std::size_t size = model.buffers[view.buffer].data.size();
+    if (view.byteOffset > size || view.byteLength > size - view.byteOffset) {
+      throw SceneError("bufferView " + std::to_string(i) + ": bytes " + std::to_string(view.byteOffset) + ".." +
+                       std::to_string(view.byteOffset + view.byteLength) + " lie beyond its buffer's " +
+                       std::to_string(size));
+    }
+  }
+  for (std::size_t i = 0; i < model.lights.size(); ++i) convert.light(int(i), glm::mat4(1.0f));
+}
+
 bool isBinaryGltf(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   char magic[4] = {};
@@ -311,6 +355,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
     checkTriangleCount(model, options.maxTriangles);
     gltf::Converter convert(model, scene, glm::radians(options.creaseAngleDegrees));
+    checkStructure(model, convert);
     SceneWalker(model, scene, convert, options).walk();
   } catch (const SceneError& e) {
     throw SceneError(path + ": " + e.what());
