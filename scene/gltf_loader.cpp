@@ -153,7 +153,8 @@ class SceneWalker {
     for (std::size_t i = 0; i < model_.cameras.size(); ++i) {
       scene_.cameras[i] = convert_.camera(int(i));
     }
-    // Iterative depth-first walk; a node met twice means a cycle or multiple parents.
+    // Iterative depth-first walk. checkStructure has ruled out cycles and second parents, so
+    // a node met twice is listed twice among the roots, or is both a root and a child.
     std::vector<bool> visited(model_.nodes.size(), false);
     struct Item {
       int node;
@@ -169,7 +170,7 @@ class SceneWalker {
       }
       if (visited[item.node]) {
         throw SceneError("node " + std::to_string(item.node) +
-                         " is reached twice (a cycle or several parents)");
+                         " is reached twice (a scene root listed twice, or also a child)");
       }
       visited[item.node] = true;
       const tinygltf::Node& node = model_.nodes[item.node];
