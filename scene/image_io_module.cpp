@@ -12,6 +12,17 @@ bool fail(std::string* error, const std::string& reason) {
   return false;
 }
 
+// Reads all channels of the opened image `in` as `type` into `out`.
+template <typename T>
+bool readPixels(OIIO::ImageInput& in, OIIO::TypeDesc type, RawImage<T>* out, std::string* error) {
+  const OIIO::ImageSpec& spec = in.spec();
+  out->width = spec.width;
+  out->height = spec.height;
+  out->channels = spec.nchannels;
+  out->pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
+  return in.read_image(0, 0, 0, spec.nchannels, type, out->pixels.data()) ? true : fail(error, in.geterror());
+}
+
 bool decode8(const unsigned char* bytes, std::size_t size, const char* extension, std::int64_t maxDimension,
              std::int64_t maxPixels, RawImage<std::uint8_t>* out, std::string* error) {
   OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes), size);
@@ -29,14 +40,7 @@ bool decode8(const unsigned char* bytes, std::size_t size, const char* extension
     return fail(error, std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                            " exceeds the texture limit of " + std::to_string(maxPixels) + " pixels");
   }
-  out->width = spec.width;
-  out->height = spec.height;
-  out->channels = spec.nchannels;
-  out->pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, out->pixels.data())) {
-    return fail(error, in->geterror());
-  }
-  return true;
+  return readPixels(*in, OIIO::TypeDesc::UINT8, out, error);
 }
 
 // Writes `image` to `path`, or into `proxy` when one is given (`path` then names the format).
@@ -71,15 +75,7 @@ bool writeLinearFloat(const char* path, const RawImage<float>& image, std::strin
 bool readFloat(const char* path, RawImage<float>* out, std::string* error) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) return fail(error, OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  out->width = spec.width;
-  out->height = spec.height;
-  out->channels = spec.nchannels;
-  out->pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out->pixels.data())) {
-    return fail(error, in->geterror());
-  }
-  return true;
+  return readPixels(*in, OIIO::TypeDesc::FLOAT, out, error);
 }
 
 const ImageIoApi kApi = {ImageIoApi::kVersion, decode8, encodePng8, writeSrgb8, writeLinearFloat, readFloat};

@@ -77,4 +77,21 @@ void writeRoomScene(const std::string& path, const RoomOptions& o) {
   b.write(path);
 }
 
+std::vector<Light> scatteredLights(int count, bool mixed, std::uint32_t seed, glm::vec3 extent) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Light> lights(std::max(count, 0));
+  for (int i = 0; i < count; ++i) {
+    Light& l = lights[i];
+    l.type = mixed ? LightType(i % 3) : LightType::Point;
+    l.position = extent * glm::vec3(u(rng), u(rng), u(rng));
+    l.direction = glm::normalize(glm::vec3(u(rng) - 0.5f, -1.0f, u(rng) - 0.5f));
+    l.colour = {u(rng), u(rng), u(rng)};
+    l.intensity = 0.5f + u(rng);
+    l.range = i % 4 == 0 ? 0.0f : 2.0f + 5.0f * u(rng);
+    l.outerConeAngle = 0.2f + 0.6f * u(rng);
+  }
+  return lights;
+}
+
 }  // namespace manylight

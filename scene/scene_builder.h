@@ -62,4 +62,10 @@ struct RoomOptions {
 };
 void writeRoomScene(const std::string& path, const RoomOptions& options);
 
+// `count` lights scattered uniformly in the box [0, extent] from seed `seed`: all point
+// lights, or point, spot and directional in turn (`mixed`); random colours, intensities in
+// [0.5, 1.5], three in four with a range, spot cones of 0.2–0.8 rad. For tests and
+// benchmarks of light structures.
+std::vector<Light> scatteredLights(int count, bool mixed, std::uint32_t seed, glm::vec3 extent);
+
 }  // namespace manylight

@@ -3,32 +3,19 @@
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <random>
 
 #include <gtest/gtest.h>
 
 #include "bake/light_tree.h"
 #include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
+#include "scene/scene_builder.h"
 
 namespace manylight {
 namespace {
 
 std::vector<Light> randomLights(int count, bool mixed, std::uint32_t seed = 5) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<Light> lights(count);
-  for (int i = 0; i < count; ++i) {
-    Light& l = lights[i];
-    l.type = mixed ? LightType(i % 3) : LightType::Point;
-    l.position = {10.0f * u(rng), 3.0f * u(rng), 10.0f * u(rng)};
-    l.direction = glm::normalize(glm::vec3(u(rng) - 0.5f, -1.0f, u(rng) - 0.5f));
-    l.colour = {u(rng), u(rng), u(rng)};
-    l.intensity = 0.5f + u(rng);
-    l.range = i % 4 == 0 ? 0.0f : 2.0f + 5.0f * u(rng);
-    l.outerConeAngle = 0.2f + 0.6f * u(rng);
-  }
-  return lights;
+  return scatteredLights(count, mixed, seed, {10.0f, 3.0f, 10.0f});
 }
 
 bool inside(glm::vec3 p, const LightTreeNode& n) {
