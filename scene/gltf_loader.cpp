@@ -180,6 +180,10 @@ class SceneWalker {
         stack.push_back({*c, world});
       }
     }
+    if (lightsSeen_ > options_.lightBudget) {
+      throw SceneError(std::to_string(lightsSeen_) + " lights exceed the light budget of " +
+                       std::to_string(options_.lightBudget) + " (--light-budget)");
+    }
     for (std::size_t i = 0; i < cameraPlaced_.size(); ++i) {
       if (!cameraPlaced_[i]) {
         scene_.warnings.push_back("camera " + std::to_string(i) +
@@ -212,11 +216,8 @@ class SceneWalker {
     }
     const int light = nodeLight(node);
     if (light >= 0) {
-      if (scene_.lights.size() >= options_.lightBudget) {
-        throw SceneError("more than " + std::to_string(options_.lightBudget) +
-                         " lights exceed the light budget (--light-budget)");
-      }
-      scene_.lights.push_back(convert_.light(light, world));
+      // Past the budget, lights are only counted (nothing more is stored), for the message.
+      if (++lightsSeen_ <= options_.lightBudget) scene_.lights.push_back(convert_.light(light, world));
     } else if (light < -1) {
       throw SceneError(where + ": light " + std::to_string(light) + " does not exist");
     }
@@ -227,6 +228,7 @@ class SceneWalker {
   gltf::Converter& convert_;
   const LoadOptions& options_;
   std::vector<bool> cameraPlaced_;
+  std::size_t lightsSeen_ = 0;
 };
 
 // Throws when the meshes hold more triangles than `limit`, from the accessor counts alone.

@@ -148,7 +148,7 @@ const BadInput kBadInputs[] = {
                    {"extensions": {"KHR_lights_punctual": {"light": 0}}},
                    {"extensions": {"KHR_lights_punctual": {"light": 0}}}],
          "scenes": [{"nodes": [0, 1, 2]}]})",
-     "--light-budget 2", "more than 2 lights exceed the light budget (--light-budget)"},
+     "--light-budget 2", "3 lights exceed the light budget of 2 (--light-budget)"},
     {"cycle.gltf",
      R"({"asset": {"version": "2.0"}, "nodes": [{"children": [1]}, {"children": [0]}],
          "scenes": [{"nodes": [0]}]})",
@@ -235,7 +235,7 @@ TEST(Cli, LimitsRefuseScenesBeforeReadingThem) {
       {"--max-texture-size 4", "image 0: cannot decode image: 8x8 exceeds the texture dimension limit of 4"},
       {"--max-texture-pixels 63", "image 0: cannot decode image: 8x8 exceeds the texture limit of 63 pixels"},
       {"--max-file-bytes 100", "the scene's files exceed the limit of 100 bytes"},
-      {"--light-budget 1", "more than 1 lights exceed the light budget (--light-budget)"},
+      {"--light-budget 1", "2 lights exceed the light budget of 1 (--light-budget)"},
   };
   for (const Limit& l : limits) {
     const ProcessResult r = manylight("render " + scene + " -o " + out + " " + l.args);
