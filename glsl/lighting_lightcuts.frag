@@ -296,7 +296,7 @@ const float kStep = 32.0;
 
 // The node rule: every node of the cut has an upper bound ≤ ε × the pixel's estimate. Each
 // pass refines against max(ε × the previous estimate, the previous threshold / kStep) and
-// the rule holds once a pass's threshold is ≤ ε × its own estimate.
+// stops once the largest upper bound in its cut is ≤ ε × its own estimate.
 void nodeRuleCut() {
   cutPass(kUnbounded * 0.5, 0);  // the roots (and unbounded nodes below them)
   keepPass();
@@ -308,7 +308,8 @@ void nodeRuleCut() {
       fallBackIfFull();
       return;
     }
-    if (tau <= uError * maxOf(estimateSum)) return;
+    // The rule is about the cut's own bounds, which may all be below the threshold.
+    if (largestMeasure <= uError * maxOf(estimateSum)) return;
     keepPass();
   }
   atMax = true;  // out of loop iterations before the rule held
