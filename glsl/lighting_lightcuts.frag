@@ -26,9 +26,10 @@
 // passes tighten the threshold until the rule holds (see nodeRuleCut and totalRuleCut).
 // The end condition is the rule itself; only the order of refinement differs, which
 // matters where a cut reaches uMaxCut (those pixels are counted).
+// llvmpipe also caps a shader's loop iterations (see kIterationBudget).
 // The DISTANCE variant is the cheaper, unguaranteed criterion of the Lightcuts-in-UE4 work:
-// refine a node while p lies within its radius of influence, uInfluence × half its box
-// diagonal of its box centre.
+// refine a node while p lies within its radius of influence: uInfluence × half its box
+// diagonal, around its box centre.
 uniform sampler2D uPosition;
 uniform sampler2D uNormal;
 uniform sampler2D uAlbedo;
