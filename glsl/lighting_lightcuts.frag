@@ -124,9 +124,10 @@ bool spotMayReach(Node n, vec3 p) {
   return dot(n.axis, toP) / d >= cosSum;
 }
 
-// Upper and lower bounds of node n's contribution (see the top of this file). Returns
-// false when the upper bound is unbounded (p inside the box).
-bool nodeBounds(int tree, Node n, out vec3 upper, out vec3 lower) {
+// Upper and lower bounds of node n's contribution (see the top of this file); the lower one
+// only when `wantLower` (the node rule needs none). Returns false when the upper bound is
+// unbounded (p inside the box).
+bool nodeBounds(int tree, Node n, bool wantLower, out vec3 upper, out vec3 lower) {
   ++nodeEvaluations;
   upper = vec3(0.0);
   lower = vec3(0.0);
@@ -140,10 +141,10 @@ bool nodeBounds(int tree, Node n, out vec3 upper, out vec3 lower) {
   vec2 sphere = sphereCosines(s.normal, p, n);
   float cosUp = min(cosineUpper(s.normal, p, n, dMin), sphere.x);
   if (cosUp <= 0.0) return true;
-  float gUp = 1.0, gLow = 1.0;
+  float gUp = 1.0, gLow = wantLower ? 1.0 : 0.0;
   if (tree != 0) {
     gUp = window(d2Min, n.invRange2) / max(d2Min, kMinDistanceSquared);
-    gLow = tree == 2 ? 0.0 : window(d2Max, n.w2) / max(d2Max, kMinDistanceSquared);
+    gLow = tree == 2 || !wantLower ? 0.0 : window(d2Max, n.w2) / max(d2Max, kMinDistanceSquared);
     if (tree == 2 && !spotMayReach(n, p)) return true;
   }
   vec3 m = s.albedo / kPi;
@@ -234,7 +235,7 @@ void cutPass(float tau, int measure) {
           wanted = dot(toCentre, toCentre) < radius * radius;
         } else {
           vec3 upper, lower;
-          bounded = nodeBounds(tree, n, upper, lower);
+          bounded = nodeBounds(tree, n, measure == 1, upper, lower);
           error = measure == 0 ? upper : upper - lower;
           wanted = !bounded || maxOf(error) > tau;
         }
