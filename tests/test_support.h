@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gl/context.h"
 #include "scene/scene_builder.h"
@@ -20,5 +21,12 @@ gl::Context& context();
 
 // Where failing render tests put their actual and diff images.
 std::filesystem::path artefactFolder();
+
+// The files the corpus tests walk, sorted: the project's own scenes/ always (so the walk is
+// never empty), and every .gltf/.glb of ../shared/scenes when that folder exists (in CI).
+std::vector<std::filesystem::path> corpusFiles();
+
+// A corpus file's name in reports: relative to ../shared/scenes, or "scenes/NAME".
+std::string corpusName(const std::filesystem::path& file);
 
 }  // namespace manylight::testing
