@@ -11,8 +11,8 @@ namespace manylight {
 using namespace gl::api;
 
 LightcutsMethod::LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
-                                 const TreeOptions& options)
-    : width_(gbuffer.width()), height_(gbuffer.height()) {
+                                 const TreeOptions& options, bool distance)
+    : distance_(distance), width_(gbuffer.width()), height_(gbuffer.height()) {
   layout_ = packLightTrees(buildLightTrees(lights, options));
   std::vector<std::uint32_t>& texels = layout_.texels;
   if (texels.empty()) texels.assign(4, 0u);  // no lights: keep the sampler complete
@@ -50,7 +50,7 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
                             const LightcutsSettings& settings) const {
   const int maxCut = std::clamp(settings.maxCut, 1, kMaxCutLimit);
   std::vector<std::string> defines;
-  if (settings.distance) defines.push_back("DISTANCE");
+  if (distance_) defines.push_back("DISTANCE");
   if (scene.hasSpecular()) defines.push_back("HAS_SPECULAR");
   const gl::Program& shader = program(defines);
   shader.use();

@@ -18,7 +18,6 @@ namespace manylight {
 enum class ErrorMode { Node, Total };
 
 struct LightcutsSettings {
-  bool distance = false;  // the distance criterion (lightcuts-distance) instead of bounds
   float error = 0.02f;    // ε
   ErrorMode mode = ErrorMode::Node;
   int maxCut = 1000;      // nodes per cut; at most kMaxCutLimit
@@ -45,7 +44,9 @@ class LightcutsMethod {
  public:
   // Builds the trees of `lights` and uploads them; needs a current context. Throws
   // gl::GlError when the driver cannot hold them.
-  LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer, const TreeOptions& options = {});
+  // `distance`: cut by the distance criterion (lightcuts-distance) instead of error bounds.
+  LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer, const TreeOptions& options,
+                  bool distance);
 
   // Adds the lights' contribution to the radiance target of `gbuffer` and writes the cut
   // statistics target.
@@ -60,6 +61,7 @@ class LightcutsMethod {
 
   PackedTrees layout_;  // bases and leaf counts (the texels are dropped after upload)
   gl::TextureBuffer nodes_;
+  bool distance_;
   int width_, height_;
   gl::Texture statsTarget_;
   gl::Framebuffer framebuffer_;  // radiance + statistics

@@ -39,13 +39,12 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
                p.uniform("uModel"), p.uniform("uNormalMatrix"), p.uniform("uBaseColorFactor"),
                p.uniform("uMetallic"), p.uniform("uRoughness"), p.uniform("uEmissive"),
                p.uniform("uHasTexture"), p.uniform("uDoubleSided"), p.uniform("uMirrored")};
-  method_ = method;
   if (method != Method::Reference) {
     glFinish();
     const auto start = std::chrono::steady_clock::now();
     TreeOptions tree;
     tree.split = split;
-    lightcuts_ = std::make_unique<LightcutsMethod>(lights, gbuffer_, tree);
+    lightcuts_ = std::make_unique<LightcutsMethod>(lights, gbuffer_, tree, method == Method::LightcutsDistance);
     glFinish();
     bakeMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
@@ -108,9 +107,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   glBindVertexArray(emptyVao_.id());
   int passes = 1;
   if (lightcuts_) {
-    LightcutsSettings cuts = settings.lightcuts;
-    cuts.distance = method_ == Method::LightcutsDistance;
-    lightcuts_->light(gpu_, gbuffer_, view, cuts);
+    lightcuts_->light(gpu_, gbuffer_, view, settings.lightcuts);
   } else {
     passes = reference_.light(gpu_, gbuffer_, view, settings.lightsPerPass);
   }

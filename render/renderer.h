@@ -24,7 +24,7 @@ const char* methodName(Method m);
 struct FrameSettings {
   glm::vec3 ambient{0.0f};
   int lightsPerPass = 0;  // 0: ReferenceMethod::lightsPerPass(pixels)
-  LightcutsSettings lightcuts;  // Method::Lightcuts (its `distance` follows the method)
+  LightcutsSettings lightcuts;  // the lightcuts methods
 };
 
 struct FrameStats {
@@ -59,7 +59,6 @@ class Renderer {
   GBuffer gbuffer_;
   gl::Program geometry_;
   GeometryUniforms uniforms_;
-  Method method_;
   ReferenceMethod reference_;
   std::unique_ptr<LightcutsMethod> lightcuts_;
   double bakeMs_ = 0.0;

@@ -98,6 +98,14 @@ glm::mat4 withoutScale(const glm::mat4& world) {
   return m;
 }
 
+int primitiveMode(const tinygltf::Primitive& p) { return p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode; }
+
+long long triangleCount(int mode, long long count) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) return count / 3;
+  if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) return std::max(count - 2, 0ll);
+  return 0;
+}
+
 Converter::Converter(const tinygltf::Model& model, Scene& scene, float creaseRadians)
     : model_(model),
       scene_(scene),
@@ -123,7 +131,7 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
   const tinygltf::Primitive& src = model_.meshes[meshIndex].primitives[primIndex];
   const std::string where = "mesh " + str(meshIndex) + " primitive " + str(primIndex);
   Primitive p;
-  const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
+  const int mode = primitiveMode(src);
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
       mode != TINYGLTF_MODE_TRIANGLE_FAN) {
     scene_.warnings.push_back(where + ": points and lines (mode " + str(mode) + ") skipped");

@@ -7,9 +7,17 @@
 
 namespace tinygltf {
 class Model;
+struct Primitive;
 }
 
 namespace manylight::gltf {
+
+// A primitive's mode, TRIANGLES when absent.
+int primitiveMode(const tinygltf::Primitive& p);
+
+// How many triangles a primitive of `mode` with `count` vertices (or indices) makes; 0 for
+// points and lines.
+long long triangleCount(int mode, long long count);
 
 // The rotation and translation of `world`, scale removed (cameras).
 glm::mat4 withoutScale(const glm::mat4& world);

@@ -242,9 +242,7 @@ void checkTriangleCount(const tinygltf::Model& model, std::int64_t limit) {
         accessor = it == p.attributes.end() ? -1 : it->second;
       }
       if (accessor < 0 || accessor >= int(model.accessors.size())) continue;
-      const std::int64_t n = std::int64_t(model.accessors[accessor].count);
-      if (p.mode == TINYGLTF_MODE_TRIANGLES) triangles += n / 3;
-      if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN) triangles += std::max<std::int64_t>(n - 2, 0);
+      triangles += gltf::triangleCount(gltf::primitiveMode(p), (long long)model.accessors[accessor].count);
     }
   }
   if (triangles > limit) {
