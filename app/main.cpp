@@ -8,9 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "gl/context.h"
+#include "render/colour_calibration.h"
 #include "render/output_file.h"
 #include "render/render_job.h"
+#include "bake/light_tree_layout.h"
 #include "scene/gltf_loader.h"
+#include "scene/light_list.h"
 
 namespace {
 
@@ -37,9 +40,91 @@ glm::vec3 parseRgb(const std::string& s) {
   return v;
 }
 
+nlohmann::json perChannel(const double (&v)[3]) { return nlohmann::json::array({v[0], v[1], v[2]}); }
+
+nlohmann::json nodeColourStats(const NodeColourCoder& c) {
+  nlohmann::json j = {
+      {"coding", c.coding() == NodeColourCoding::Fitted ? "fitted" : "rgb9e5"},
+      {"bytes_per_node", 4 * layout::kNodeWords},
+      {"bytes_per_spot_node", 4 * layout::kSpotNodeWords},
+      {"slack", c.slack},
+      {"slack_floor", c.slackFloor},
+      {"max_error", perChannel(c.maxError)},
+      {"p99_error", perChannel(c.p99Error)},
+  };
+  if (c.coding() == NodeColourCoding::Fitted) {
+    j["gamma"] = c.fit().gamma;
+    j["a"] = c.fit().a;
+    j["fit_worst_relative"] = c.fit().worstRelative;
+    j["fitted_to_srgb"] = c.fittedToSrgb();
+  } else {
+    j["scale"] = c.scale();
+  }
+  return j;
+}
+
+// A context, or null after saying why there is none.
+std::unique_ptr<gl::Context> openContext(gl::Backend backend, bool verbose) {
+  std::vector<std::string> attempts;
+  std::unique_ptr<gl::Context> context;
+  try {
+    context = gl::createContext(backend, &attempts);
+  } catch (const gl::GlError& e) {
+    std::cerr << "manylight: " << e.what() << "\n";
+    return nullptr;
+  }
+  if (verbose) {
+    for (const std::string& line : attempts) std::cerr << "manylight: context " << line << "\n";
+    std::cerr << "manylight: using " << context->backend() << ", " << context->renderer() << ", "
+              << context->version() << "\n";
+  }
+  return context;
+}
+
+struct FitArgs {
+  std::string pairs, calibrate, backend = "auto", codes = std::to_string(kFirstCalibrationCode) + "..255";
+  bool verbose = false;
+};
+
+void printFit(const PowerFit& fit) {
+  std::printf("pairs = %zu\ngamma = %.6f\nA = %.8g\nlog10(A) = %.6f\nR^2 = %.6f\nworst relative residual = %.6f\n",
+              fit.pairs, fit.gamma, fit.a, fit.log10A, fit.r2, fit.worstRelative);
+}
+
+int runFitGamma(const FitArgs& a) {
+  if (a.pairs.empty() == a.calibrate.empty()) {
+    std::cerr << "manylight: fit-gamma: give either PAIRS.csv or --calibrate SCENE\n";
+    return kExitUsage;
+  }
+  if (!a.pairs.empty()) {
+    const std::vector<FitPair> pairs = readFitPairs(a.pairs);
+    try {
+      printFit(fitPowerLaw(pairs));
+    } catch (const BakeError& e) {
+      throw BakeError(a.pairs + ": " + e.what());
+    }
+    return kExitOk;
+  }
+  int first = 0, last = 0;
+  char tail = 0;
+  if (std::sscanf(a.codes.c_str(), "%d..%d%c", &first, &last, &tail) != 2 || first < 1 || last > 255 || first >= last) {
+    std::cerr << "manylight: --codes: expected FIRST..LAST with 1 <= FIRST < LAST <= 255, got '" << a.codes << "'\n";
+    return kExitUsage;
+  }
+  const Scene scene = loadGltf(a.calibrate);
+  const std::unique_ptr<gl::Context> context = openContext(gl::parseBackend(a.backend), a.verbose);
+  if (!context) return kExitNoContext;
+  const ColourCalibration c = calibrateColour(scene, first, last);
+  printFit(c.fit);
+  std::printf("largest difference from the sRGB curve = %d codes (at code %d)\n", c.largestCodeDifference,
+              c.worstCode);
+  return kExitOk;
+}
+
 struct RenderArgs {
   std::string scene, output, size = "640x480", method = "reference", backend = "auto";
-  std::string ambient = "0,0,0", statsPath, errorMode = "node", treeSplit = "metric";
+  std::string ambient = "0,0,0", statsPath, errorMode = "node", treeSplit = "metric", nodeColour = "rgb9e5";
+  std::string lightList;
   float error = 0.02f;
   int maxCut = LightcutsSettings{}.maxCut;
   int camera = -1;
@@ -63,30 +148,21 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.lightcuts.error = a.error;
   request.lightcuts.maxCut = a.maxCut;
   request.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
-  request.lightcuts.split = a.treeSplit == "metric" ? Split::Metric : Split::LongestAxis;
+  request.lightcuts.trees.split = a.treeSplit == "metric" ? Split::Metric : Split::LongestAxis;
+  request.lightcuts.trees.nodeColour = a.nodeColour == "fitted" ? NodeColourCoding::Fitted : NodeColourCoding::Rgb9e5;
   const gl::Backend backend = gl::parseBackend(a.backend);
   checkOutputPath(a.output);
 
   const auto loadStart = Clock::now();
   LoadOptions options = a.limits;
   options.lightBudget = a.lightBudget;
-  const Scene scene = loadGltf(a.scene, options);
+  Scene scene = loadGltf(a.scene, options);
+  if (!a.lightList.empty()) appendLightList(a.lightList, scene, options);
   const double loadMs = msSince(loadStart);
   for (const std::string& w : scene.warnings) std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";
 
-  std::vector<std::string> attempts;
-  std::unique_ptr<gl::Context> context;
-  try {
-    context = gl::createContext(backend, &attempts);
-  } catch (const gl::GlError& e) {
-    std::cerr << "manylight: " << e.what() << "\n";
-    return kExitNoContext;
-  }
-  if (a.verbose) {
-    for (const std::string& line : attempts) std::cerr << "manylight: context " << line << "\n";
-    std::cerr << "manylight: using " << context->backend() << ", " << context->renderer() << ", "
-              << context->version() << "\n";
-  }
+  const std::unique_ptr<gl::Context> context = openContext(backend, a.verbose);
+  if (!context) return kExitNoContext;
   const RenderOutcome out = renderScene(scene, request);
   if (out.framed && a.verbose) std::cerr << "manylight: " << a.scene << ": no camera; framing the bounds\n";
   if (out.defaultRig) {
@@ -129,6 +205,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
       }
       stats["max_cut"] = request.lightcuts.maxCut;
       stats["tree_split"] = a.treeSplit;
+      stats["node_colour"] = nodeColourStats(out.nodeColour);
     }
     writeTextFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
@@ -172,6 +249,15 @@ int main(int argc, char** argv) {
                      "cluster metric) or longest-axis (the k-d baseline)")
       ->capture_default_str()
       ->check(CLI::IsMember({"metric", "longest-axis"}));
+  render->add_option("--node-colour", r.nodeColour,
+                     "lightcuts: how tree nodes store their colour in one word: rgb9e5 (9-bit "
+                     "mantissas, shared exponent; the more accurate) or fitted (8 bits per channel on "
+                     "a power law fitted to the scene, shared exponent)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fitted", "rgb9e5"}));
+  render->add_option("--lights", r.lightList,
+                     "Add point lights from a list: .csv, .json, or the Lightcuts-in-UE4 text dump "
+                     "(8-bit sRGB colours; see README)");
   render->add_option("--max-cut", r.maxCut, "lightcuts: most nodes in a pixel's cut")
       ->capture_default_str()
       ->check(CLI::Range(1, kMaxCutLimit));
@@ -204,6 +290,19 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0f, 180.0f));
   render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
   render->add_flag("-v,--verbose", r.verbose, "Say which context was chosen and how long things took");
+  FitArgs f;
+  CLI::App* fit = app.add_subcommand(
+      "fit-gamma", "Fit out = A·in^γ by least squares in log–log space, to pairs from a file or measured by rendering");
+  fit->add_option("pairs", f.pairs, "CSV of in,out pairs (a header line 'in,out' is allowed)");
+  fit->add_option("--calibrate", f.calibrate,
+                  "Measure the pairs: render the scene lit by its first light in each grey 8-bit colour "
+                  "1..255 on the reference path");
+  fit->add_option("--codes", f.codes,
+                  "--calibrate: the 8-bit codes probed, FIRST..LAST (the default skips the sRGB curve's "
+                  "linear segment, codes 0-10, which no power law fits)")
+      ->capture_default_str();
+  fit->add_option("--backend", f.backend, "Context for --calibrate: auto, egl, osmesa")->capture_default_str();
+  fit->add_flag("-v,--verbose", f.verbose, "Say which context was chosen");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -211,6 +310,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*render) return runRender(r, processStart);
+    if (*fit) return runFitGamma(f);
   } catch (const CLI::ParseError& e) {
     std::cerr << "manylight: " << e.what() << "\n";
     return kExitUsage;
@@ -218,7 +318,8 @@ int main(int argc, char** argv) {
     std::cerr << "manylight: " << e.what() << "\n";
     return kExitFailure;
   } catch (const std::exception& e) {
-    std::cerr << "manylight: " << r.scene << ": " << e.what() << "\n";
+    const std::string& subject = *fit ? (f.pairs.empty() ? f.calibrate : f.pairs) : r.scene;
+    std::cerr << "manylight: " << subject << ": " << e.what() << "\n";
     return kExitFailure;
   }
   return kExitUsage;

@@ -20,6 +20,7 @@
 #include <glm/glm.hpp>
 
 #include "bake/light_pack.h"
+#include "bake/node_colour.h"
 #include "scene/scene.h"
 
 namespace manylight {
@@ -55,6 +56,8 @@ struct TreeOptions {
   // cones. (Longest-axis splits: 605.)
   double coneWeight = 0.0;
   std::uint64_t seed = 0x6c69676874637574ull;  // representatives: fixed, so bakes repeat
+  // How packLightTrees (bake/light_tree_pack.h) stores node colours.
+  NodeColourCoding nodeColour = NodeColourCoding::Rgb9e5;
 };
 
 // One tree per light type present, in the order directional, point, spot. Representatives

@@ -17,38 +17,56 @@ std::uint32_t bits(float f) {
   return u;
 }
 
+int typeIndex(LightType type) { return type == LightType::Directional ? 0 : type == LightType::Point ? 1 : 2; }
+
+// The intensities the shader decodes: internal, non-empty nodes (leaves are exact).
+std::vector<glm::vec3> decodedIntensities(const std::vector<LightTree>& trees) {
+  std::vector<glm::vec3> colours;
+  for (const LightTree& tree : trees) {
+    for (int i = 0; i < tree.firstLeaf(); ++i) {
+      if (!tree.nodes[i].empty()) colours.push_back(tree.nodes[i].intensity);
+    }
+  }
+  return colours;
+}
+
 }  // namespace
 
-PackedTrees packLightTrees(const std::vector<LightTree>& trees) {
-  PackedTrees packed;
-  std::size_t texels = 0;
+PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding coding) {
+  PackedTrees packed{{}, {0, 0, 0}, {0, 0, 0}, NodeColourCoder(coding, decodedIntensities(trees))};
+  std::size_t words = 0;
   for (const LightTree& tree : trees) {
-    const int stride = tree.type == LightType::Spot ? layout::kSpotNodeTexels : layout::kNodeTexels;
-    texels += tree.nodes.size() * stride;
+    words += tree.nodes.size() * (tree.type == LightType::Spot ? layout::kSpotNodeWords : layout::kNodeWords);
   }
-  packed.texels.assign(texels * 4, 0u);
+  words = (words + 3) / 4 * 4;
+  if (words > std::size_t(1) << 31) throw BakeError("the light trees need " + std::to_string(words) + " words, more than 2^31");
+  packed.words.assign(words, 0u);
   std::size_t next = 0;
   for (const LightTree& tree : trees) {
-    const int t = int(tree.type == LightType::Directional ? 0 : tree.type == LightType::Point ? 1 : 2);
-    const int stride = t == 2 ? layout::kSpotNodeTexels : layout::kNodeTexels;
+    const int t = typeIndex(tree.type);
     packed.base[t] = int(next);
     packed.leaves[t] = tree.leafCount;
-    for (const LightTreeNode& n : tree.nodes) {
-      std::uint32_t* w = &packed.texels[next * 4];
+    for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+      const LightTreeNode& n = tree.nodes[i];
+      std::uint32_t* w = &packed.words[next];
       w[0] = bits(n.boxMin.x), w[1] = bits(n.boxMin.y), w[2] = bits(n.boxMin.z);
       w[3] = std::uint32_t(n.representative);
-      w[4] = bits(n.boxMax.x), w[5] = bits(n.boxMax.y), w[6] = bits(n.boxMax.z);
+      if (int(i) < tree.firstLeaf()) {
+        w[4] = bits(n.boxMax.x), w[5] = bits(n.boxMax.y), w[6] = bits(n.boxMax.z);
+        w[8] = packed.colour.encode(n.intensity);
+      } else {  // a leaf's box is its light's position: the words hold its exact intensity
+        w[4] = bits(n.intensity.r), w[5] = bits(n.intensity.g), w[6] = bits(n.intensity.b);
+      }
       w[7] = bits(n.invRange2);
-      w[8] = bits(n.intensity.r), w[9] = bits(n.intensity.g), w[10] = bits(n.intensity.b);
-      if (t == 1) w[11] = bits(n.invRange2Max);
+      if (t == 1) w[9] = bits(n.invRange2Max);
       if (t == 2) {
         // 1e-4 rad of margin covers the float rounding of the cone merges.
         const double theta = std::min(double(n.spread) + double(n.outerAngle) + 1e-4, glm::pi<double>());
-        w[11] = bits(float(std::cos(theta)));
-        w[12] = bits(n.axis.x), w[13] = bits(n.axis.y), w[14] = bits(n.axis.z);
-        w[15] = bits(float(std::sin(theta)));
+        w[9] = bits(float(std::cos(theta)));
+        w[10] = bits(n.axis.x), w[11] = bits(n.axis.y), w[12] = bits(n.axis.z);
+        w[13] = bits(float(std::sin(theta)));
       }
-      next += stride;
+      next += t == 2 ? layout::kSpotNodeWords : layout::kNodeWords;
     }
   }
   return packed;

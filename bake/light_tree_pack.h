@@ -4,16 +4,19 @@
 #include <vector>
 
 #include "bake/light_tree.h"
+#include "bake/node_colour.h"
 
 namespace manylight {
 
 struct PackedTrees {
-  std::vector<std::uint32_t> texels;  // 4 words per texel
-  // Per light type (0 directional, 1 point, 2 spot): first texel and leaf count (0: no tree).
+  std::vector<std::uint32_t> words;  // a whole number of texels (4 words each)
+  // Per light type (0 directional, 1 point, 2 spot): first word and leaf count (0: no tree).
   int base[3] = {0, 0, 0};
   int leaves[3] = {0, 0, 0};
+  NodeColourCoder colour;  // how word 8 of each node codes its intensity, and the error
 };
 
-PackedTrees packLightTrees(const std::vector<LightTree>& trees);
+// Throws BakeError when the forest needs more than 2^31 words.
+PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding coding = NodeColourCoding::Rgb9e5);
 
 }  // namespace manylight

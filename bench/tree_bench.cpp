@@ -16,7 +16,7 @@ void buildTrees(benchmark::State& state, Split split, bool mixed) {
   options.split = split;
   for (auto _ : state) {
     PackedTrees packed = packLightTrees(buildLightTrees(lights, options));
-    benchmark::DoNotOptimize(packed.texels.data());
+    benchmark::DoNotOptimize(packed.words.data());
   }
   state.counters["lights"] = double(lights.size());
 }

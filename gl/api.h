@@ -67,6 +67,7 @@
   X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)              \
   X(PFNGLUNIFORM1IPROC, glUniform1i)                                \
   X(PFNGLUNIFORM1FPROC, glUniform1f)                                \
+  X(PFNGLUNIFORM2FPROC, glUniform2f)                                \
   X(PFNGLUNIFORM3IPROC, glUniform3i)                                \
   X(PFNGLUNIFORM3FVPROC, glUniform3fv)                              \
   X(PFNGLUNIFORM4FVPROC, glUniform4fv)                              \

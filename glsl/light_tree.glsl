@@ -1,37 +1,69 @@
-// Reads light tree nodes; the layout is documented in bake/light_tree_layout.h.
+// Reads light tree nodes; the layout is documented in bake/light_tree_layout.h, the colour
+// codings in bake/node_colour.h.
 uniform usamplerBuffer uNodes;
-uniform ivec3 uTreeBase;    // first texel of the directional, point and spot trees
+uniform ivec3 uTreeBase;    // first word of the directional, point and spot trees
 uniform ivec3 uTreeLeaves;  // their leaf counts (powers of two); 0: no such tree
+#ifdef FITTED_COLOUR
+uniform vec2 uColourFit;     // A, γ of the fitted power law
+#else
+uniform float uColourScale;  // RGB9_E5: stored = intensity / scale
+#endif
 
 struct Node {
   vec3 boxMin;
   int representative;  // light texture slot; −1: empty
   vec3 boxMax;
   float invRange2;     // 1/(largest range)², 0: some light has no range
-  vec3 intensity;
+  vec3 intensity;      // internal nodes: decoded, within the coding's slack; leaves: exact
   float w2;            // spot: cos Θ; point: 1/(smallest range)²
   vec3 axis;           // spot only
   float sinTheta;      // spot only
 };
 
+vec3 decodeIntensity(uint w) {
+#ifdef FITTED_COLOUR
+  vec3 code = vec3(uvec3(w, w >> 8u, w >> 16u) & uvec3(255u));
+  // pow(0, γ) is left undefined by GLSL: code 0 is 0 by the coding's definition.
+  vec3 c = mix(vec3(0.0), pow(max(code, vec3(1.0)), vec3(uColourFit.y)), greaterThan(code, vec3(0.0)));
+  return c * (exp2(float(int(w >> 24u) - 128)) * uColourFit.x);  // 2^−128 is below float's normal range
+#else
+  vec3 m = vec3(uvec3(w, w >> 9u, w >> 18u) & uvec3(511u));
+  // 2^(e − 15 − 9) built from its bits (e − 24 + 127 in the float's exponent): exact, and
+  // cheaper than exp2 on llvmpipe.
+  return m * (uintBitsToFloat(((w >> 27u) + 103u) << 23u) * uColourScale);
+#endif
+}
+
 Node fetchNode(int tree, int i) {
-  int t = uTreeBase[tree] + (tree == 2 ? 4 : 3) * i;
+  int word = uTreeBase[tree] + (tree == 2 ? 14 : 10) * i;
+  int t = word >> 2;
   uvec4 a = texelFetch(uNodes, t);
   uvec4 b = texelFetch(uNodes, t + 1);
   uvec4 c = texelFetch(uNodes, t + 2);
+  if ((word & 2) != 0) {  // the node starts at word 2 of its first texel
+    a = uvec4(a.zw, b.xy);
+    b = uvec4(b.zw, c.xy);
+    c.xy = c.zw;
+  }
   Node n;
   n.boxMin = uintBitsToFloat(a.xyz);
   n.representative = int(a.w);
-  n.boxMax = uintBitsToFloat(b.xyz);
   n.invRange2 = uintBitsToFloat(b.w);
-  n.intensity = uintBitsToFloat(c.xyz);
-  n.w2 = uintBitsToFloat(c.w);
+  if (i < uTreeLeaves[tree] - 1) {
+    n.boxMax = uintBitsToFloat(b.xyz);
+    n.intensity = decodeIntensity(c.x);
+  } else {  // a leaf: a point box, and its light's exact intensity
+    n.boxMax = n.boxMin;
+    n.intensity = uintBitsToFloat(b.xyz);
+  }
+  n.w2 = uintBitsToFloat(c.y);
   n.axis = vec3(0.0);
   n.sinTheta = 0.0;
   if (tree == 2) {
     uvec4 d = texelFetch(uNodes, t + 3);
-    n.axis = uintBitsToFloat(d.xyz);
-    n.sinTheta = uintBitsToFloat(d.w);
+    uvec4 spot = (word & 2) != 0 ? d : uvec4(c.zw, d.xy);  // words 10–13
+    n.axis = uintBitsToFloat(spot.xyz);
+    n.sinTheta = uintBitsToFloat(spot.w);
   }
   return n;
 }

@@ -12,6 +12,9 @@
 // box: the upper bound is unbounded, and the node is always refined. Directional trees use
 // p = 0 and no distance term (their boxes hold directions). Both a node's estimate and its
 // true contribution lie in [lower, upper], so its error is at most upper − lower.
+// I is the node's decoded intensity Ĩ widened by the coding's slack (bake/node_colour.h):
+// Ĩ + η·max(Ĩ) + ζ in the upper bound, Ĩ − η·max(Ĩ) − ζ in the lower, so the bounds hold
+// for the exact intensity although the estimate uses Ĩ. Leaves use their light's exact colour.
 //
 // Stopping rules (uErrorMode):
 //   0 "node", the paper's: every node of the cut has upper ≤ ε · max(estimate).
@@ -41,6 +44,7 @@ uniform float uError;     // ε
 uniform int uErrorMode;   // 0 node, 1 total
 uniform int uMaxCut;      // most nodes in a cut
 uniform float uInfluence; // DISTANCE: radius of influence per half diagonal
+uniform vec2 uColourSlack;  // η and ζ of the node colour coding
 
 layout(location = 0) out vec4 oRadiance;
 // x: cut size, y: light evaluations, z: node bound evaluations, w: 1, or 2 where the cut hit
@@ -51,6 +55,8 @@ const float kUnbounded = 3.0e38;
 const float kAbsoluteFloor = 1e-6;
 
 Surface s;
+
+float maxOf(vec3 v) { return max(v.x, max(v.y, v.z)); }
 int lightEvaluations = 0;
 int nodeEvaluations = 0;
 
@@ -156,17 +162,16 @@ bool nodeBounds(int tree, Node n, bool wantLower, out vec3 upper, out vec3 lower
     m += s.specular * ((s.exponent + 2.0) / (2.0 * kPi) * pow(rUp, s.exponent));
   }
 #endif
-  upper = n.intensity * m * (cosUp * gUp);
+  float slack = uColourSlack.x * maxOf(n.intensity) + uColourSlack.y;
+  upper = (n.intensity + slack) * m * (cosUp * gUp);
   // A bound that overflowed or went NaN bounds nothing (and max() would hide a NaN).
   if (any(isnan(upper)) || any(isinf(upper))) return false;
   if (gLow > 0.0) {
     float cosLow = max(cosineLower(s.normal, p, n, sqrt(d2Max)), sphere.y);
-    lower = n.intensity * (s.albedo / kPi) * (cosLow * gLow);
+    lower = max(n.intensity - slack, 0.0) * (s.albedo / kPi) * (cosLow * gLow);
   }
   return true;
 }
-
-float maxOf(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
 // The result of one pass over the trees.
 vec3 estimateSum;  // Σ of the cut's estimates (leaves exact)

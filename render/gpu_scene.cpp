@@ -93,6 +93,10 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
     }
   }
 
+  replaceLights(lights);
+}
+
+void GpuScene::replaceLights(const std::vector<Light>& lights) {
   // The light texture holds exactly the scene's lights (one zero light when there are none,
   // so the sampler is always complete).
   PackedLights packedLights = packLights(lights);

@@ -15,6 +15,9 @@ class GpuScene {
   // when the driver cannot hold the lights.
   GpuScene(const Scene& scene, const std::vector<Light>& lights);
 
+  // Uploads `lights` in place of the current ones (the geometry stays). Throws gl::GlError.
+  void replaceLights(const std::vector<Light>& lights);
+
   struct Draw {
     const gl::VertexArray* vao;
     GLsizei indexCount;

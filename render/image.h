@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/error.h"
+#include "scene/srgb.h"  // the PNG encoding
 
 namespace manylight {
 
@@ -23,12 +24,6 @@ struct Image {
   float* pixel(int x, int y) { return &rgba[(std::size_t(y) * width + x) * 4]; }
   const float* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
 };
-
-// The IEC 61966-2-1 sRGB encoding of a linear value, clamped to [0, 1] and rounded to the
-// nearest 8-bit code (not a 2.2 power).
-std::uint8_t encodeSrgb8(double linear);
-// The inverse: the linear value of an 8-bit sRGB code.
-double decodeSrgb8(std::uint8_t code);
 
 // Writes `image` scaled by 2^exposure to `path`: .png as 8-bit sRGB RGBA, .exr as linear
 // float RGBA. Creates missing parent folders, writes a temporary file beside the target and

@@ -13,12 +13,12 @@ using namespace gl::api;
 LightcutsMethod::LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
                                  const TreeOptions& options, bool distance)
     : distance_(distance), width_(gbuffer.width()), height_(gbuffer.height()) {
-  layout_ = packLightTrees(buildLightTrees(lights, options));
-  std::vector<std::uint32_t>& texels = layout_.texels;
-  if (texels.empty()) texels.assign(4, 0u);  // no lights: keep the sampler complete
-  nodes_ = gl::uploadTextureBuffer(texels.data(), texels.size() / 4, GL_RGBA32UI,
+  layout_ = packLightTrees(buildLightTrees(lights, options), options.nodeColour);
+  std::vector<std::uint32_t>& words = layout_.words;
+  if (words.empty()) words.assign(4, 0u);  // no lights: keep the sampler complete
+  nodes_ = gl::uploadTextureBuffer(words.data(), words.size() / 4, GL_RGBA32UI,
                                    "light trees of " + std::to_string(lights.size()) + " lights");
-  texels = {};
+  words = {};
 
   glBindTexture(GL_TEXTURE_2D, statsTarget_.id());
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width_, height_, 0, GL_RGBA, GL_FLOAT, nullptr);
@@ -52,6 +52,8 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   std::vector<std::string> defines;
   if (distance_) defines.push_back("DISTANCE");
   if (scene.hasSpecular()) defines.push_back("HAS_SPECULAR");
+  const NodeColourCoder& colour = layout_.colour;
+  if (colour.coding() == NodeColourCoding::Fitted) defines.push_back("FITTED_COLOUR");
   const gl::Program& shader = program(defines);
   shader.use();
 
@@ -64,6 +66,12 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   glUniform1i(shader.uniform("uNodes"), 5);
   glUniform3i(shader.uniform("uTreeBase"), layout_.base[0], layout_.base[1], layout_.base[2]);
   glUniform3i(shader.uniform("uTreeLeaves"), layout_.leaves[0], layout_.leaves[1], layout_.leaves[2]);
+  if (colour.coding() == NodeColourCoding::Rgb9e5) {
+    glUniform1f(shader.uniform("uColourScale"), colour.scale());
+  } else {
+    glUniform2f(shader.uniform("uColourFit"), float(colour.fit().a), float(colour.fit().gamma));
+  }
+  glUniform2f(shader.uniform("uColourSlack"), float(colour.slack), float(colour.slackFloor));
   glUniform1f(shader.uniform("uError"), settings.error);
   glUniform1i(shader.uniform("uErrorMode"), settings.mode == ErrorMode::Total ? 1 : 0);
   glUniform1i(shader.uniform("uMaxCut"), maxCut);

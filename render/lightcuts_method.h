@@ -21,7 +21,7 @@ struct LightcutsSettings {
   float error = 0.02f;    // ε
   ErrorMode mode = ErrorMode::Node;
   int maxCut = 1000;      // nodes per cut; at most kMaxCutLimit
-  Split split = Split::Metric;  // how the trees pair lights (used when they are built)
+  TreeOptions trees;      // how the trees are built and packed (used when they are built)
 };
 
 // llvmpipe ends a shader invocation's loops after 65,535 iterations in all, and a pass
@@ -56,10 +56,13 @@ class LightcutsMethod {
   // Reads back the statistics of the last light() call.
   CutStats cutStats() const;
 
+  // The node colour coding of the packed trees: its fit and the error it adds.
+  const NodeColourCoder& nodeColour() const { return layout_.colour; }
+
  private:
   const gl::Program& program(const std::vector<std::string>& defines) const;
 
-  PackedTrees layout_;  // bases and leaf counts (the texels are dropped after upload)
+  PackedTrees layout_;  // bases, leaf counts, colour coding (the words are dropped after upload)
   gl::TextureBuffer nodes_;
   bool distance_;
   int width_, height_;

@@ -19,12 +19,13 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   const std::vector<Light> rig = out.defaultRig ? defaultLightRig(camera) : std::vector<Light>{};
   const std::vector<Light>& lights = out.defaultRig ? rig : scene.lights;
   out.lightCount = lights.size();
-  Renderer renderer(scene, lights, request.width, request.height, request.method, request.lightcuts.split);
+  Renderer renderer(scene, lights, request.width, request.height, request.method, request.lightcuts.trees);
   FrameSettings settings;
   settings.ambient = request.ambient;
   settings.lightsPerPass = request.lightsPerPass;
   settings.lightcuts = request.lightcuts;
   out.bakeMs = renderer.bakeMs();
+  if (renderer.lightcuts()) out.nodeColour = renderer.lightcuts()->nodeColour();
   out.image = renderer.render(makeView(camera, request.width, request.height), settings, &out.frame);
   return out;
 }

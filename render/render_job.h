@@ -25,6 +25,7 @@ struct RenderOutcome {
   bool defaultRig = false;  // no lights: the default rig of scene/camera.h was used
   std::size_t lightCount = 0;
   double bakeMs = 0.0;  // light trees built and uploaded (lightcuts methods)
+  NodeColourCoder nodeColour;  // lightcuts methods: how node colours were coded, and the error
 };
 
 // The camera a request resolves to. Throws Error ("SCENE: camera N does not exist ...") for a

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cstdio>
 
@@ -28,7 +29,7 @@ const char* methodName(Method m) {
 }
 
 Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-                   Method method, Split split)
+                   Method method, const TreeOptions& trees)
     : scene_(scene),
       gpu_(scene, lights),
       gbuffer_(width, height),
@@ -42,9 +43,7 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
   if (method != Method::Reference) {
     glFinish();
     const auto start = std::chrono::steady_clock::now();
-    TreeOptions tree;
-    tree.split = split;
-    lightcuts_ = std::make_unique<LightcutsMethod>(lights, gbuffer_, tree, method == Method::LightcutsDistance);
+    lightcuts_ = std::make_unique<LightcutsMethod>(lights, gbuffer_, trees, method == Method::LightcutsDistance);
     glFinish();
     bakeMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
@@ -98,6 +97,11 @@ void Renderer::geometryPass(const View& view, const FrameSettings& settings) {
   glBindVertexArray(0);
   glFrontFace(GL_CCW);
   glDisable(GL_CULL_FACE);
+}
+
+void Renderer::replaceLights(const std::vector<Light>& lights) {
+  assert(!lightcuts_ && "the light trees are built once, from the lights given at construction");
+  gpu_.replaceLights(lights);
 }
 
 Image Renderer::render(const View& view, const FrameSettings& settings, FrameStats* stats) {

@@ -38,9 +38,15 @@ class Renderer {
   // Uploads the scene and compiles the programs; needs a current context. Throws
   // gl::GlError.
   Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-           Method method, Split split = Split::Metric);
+           Method method, const TreeOptions& trees = {});
   // Milliseconds spent building and uploading the light trees (lightcuts methods; else 0).
   double bakeMs() const { return bakeMs_; }
+  // The lightcuts method, or null for the reference method.
+  const LightcutsMethod* lightcuts() const { return lightcuts_.get(); }
+
+  // Reference method only: lights the next frames with `lights` instead (probes that change
+  // one light's colour, without uploading the geometry again). Throws gl::GlError.
+  void replaceLights(const std::vector<Light>& lights);
 
   // Renders one frame seen through `view`. Throws gl::GlError on a driver error.
   Image render(const View& view, const FrameSettings& settings, FrameStats* stats = nullptr);

@@ -97,7 +97,7 @@ TEST(LightTree, BuildsAreDeterministic) {
   const auto lights = randomLights(5000, true);
   const auto a = packLightTrees(buildLightTrees(lights));
   const auto b = packLightTrees(buildLightTrees(lights));
-  EXPECT_EQ(a.texels, b.texels);
+  EXPECT_EQ(a.words, b.words);
 }
 
 TEST(LightTree, RepresentativeIsChosenInProportionToIntensity) {
@@ -133,35 +133,50 @@ TEST(LightTree, MetricSplitGivesSmallerClustersThanTheLongestAxis) {
   EXPECT_LE(metric, longest);
 }
 
-TEST(LightTreePack, TexelsFollowTheLayout) {
+TEST(LightTreePack, WordsFollowTheLayout) {
   const auto lights = randomLights(10, true);
   const auto trees = buildLightTrees(lights);
   const PackedTrees packed = packLightTrees(trees);
   ASSERT_EQ(trees.size(), 3u);
+  EXPECT_EQ(packed.words.size() % 4, 0u);
   auto asFloat = [&](std::size_t word) {
     float f;
-    std::memcpy(&f, &packed.texels[word], sizeof f);
+    std::memcpy(&f, &packed.words[word], sizeof f);
     return f;
   };
   for (const LightTree& t : trees) {
     // Texture order: directional 0, point 1, spot 2.
     const int type = t.type == LightType::Directional ? 0 : t.type == LightType::Point ? 1 : 2;
-    const int stride = t.type == LightType::Spot ? layout::kSpotNodeTexels : layout::kNodeTexels;
+    const int stride = t.type == LightType::Spot ? layout::kSpotNodeWords : layout::kNodeWords;
     EXPECT_EQ(packed.leaves[type], t.leafCount);
+    EXPECT_EQ(packed.base[type] % 2, 0);  // the shader's fetch needs even starts
     for (std::size_t i = 0; i < t.nodes.size(); ++i) {
       const LightTreeNode& n = t.nodes[i];
-      const std::size_t w = (std::size_t(packed.base[type]) + stride * i) * 4;
+      const std::size_t w = std::size_t(packed.base[type]) + stride * i;
       EXPECT_EQ(asFloat(w + 0), n.boxMin.x);
-      EXPECT_EQ(std::int32_t(packed.texels[w + 3]), n.representative);
-      EXPECT_EQ(asFloat(w + 6), n.boxMax.z);
+      EXPECT_EQ(std::int32_t(packed.words[w + 3]), n.representative);
       EXPECT_EQ(asFloat(w + 7), n.invRange2);
-      EXPECT_EQ(asFloat(w + 9), n.intensity.g);
-      if (t.type == LightType::Point) EXPECT_EQ(asFloat(w + 11), n.invRange2Max);
+      if (int(i) < t.firstLeaf()) {
+        EXPECT_EQ(asFloat(w + 6), n.boxMax.z);
+        const glm::vec3 decoded = packed.colour.decode(packed.words[w + 8]);
+        const float largest = std::max(n.intensity.r, std::max(n.intensity.g, n.intensity.b));
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_LE(std::abs(decoded[c] - n.intensity[c]), packed.colour.slack * largest * 1.01f);
+        }
+      } else {  // leaves: the exact intensity where an internal node has its box maximum
+        EXPECT_EQ(n.boxMin, n.boxMax);
+        EXPECT_EQ(asFloat(w + 4), n.intensity.r);
+        EXPECT_EQ(asFloat(w + 6), n.intensity.b);
+        EXPECT_EQ(packed.words[w + 8], 0u);
+      }
+      if (t.type == LightType::Point) {
+        EXPECT_EQ(asFloat(w + 9), n.invRange2Max);
+      }
       if (t.type == LightType::Spot && !n.empty()) {
-        const double theta = std::acos(double(asFloat(w + 11)));
+        const double theta = std::acos(double(asFloat(w + 9)));
         EXPECT_GE(theta, std::min(double(n.spread + n.outerAngle), 3.14159) - 1e-6);
-        EXPECT_NEAR(asFloat(w + 15), std::sin(theta), 1e-5);
-        EXPECT_EQ(asFloat(w + 12), n.axis.x);
+        EXPECT_NEAR(asFloat(w + 13), std::sin(theta), 1e-5);
+        EXPECT_EQ(asFloat(w + 10), n.axis.x);
       }
     }
   }
