@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # CI: the scene tests and the corpus walk under AddressSanitizer + UndefinedBehaviorSanitizer,
-# then the glTF loader's libFuzzer target for a bounded time, seeded with ../shared/scenes.
+# then the libFuzzer targets for a bounded time: the glTF loader (FUZZ_SECONDS, seeded with
+# ../shared/scenes) and the light list reader (a third of that, seeded with small lists).
 # Usage: ci/sanitize.sh [FUZZ_SECONDS]   (default 60)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,7 +9,8 @@ seconds="${1:-60}"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DMANYLIGHT_SANITIZE=ON -DMANYLIGHT_FUZZ=ON -DMANYLIGHT_BENCH=OFF
-cmake --build build-asan --target manylight_tests manylight_gltests manylight manylight_fuzz_gltf manylight_imageio
+cmake --build build-asan --target manylight_tests manylight_gltests manylight manylight_fuzz_gltf_loader \
+  manylight_fuzz_light_list manylight_imageio
 # Slow unwinding gives full allocation stacks, which the third-party suppressions match.
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:fast_unwind_on_malloc=0
 export LSAN_OPTIONS="suppressions=$PWD/ci/lsan-suppressions.txt"
@@ -20,12 +22,20 @@ ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 build-asan/bin/manylight_gltests --
 
 # Fuzzing: seeds are the corpus's small files, copied to a scratch folder (never the repo).
 corpus="$(mktemp -d)"
-trap 'rm -rf "$corpus"' EXIT
+lists="$(mktemp -d)"
+trap 'rm -rf "$corpus" "$lists"' EXIT
 if [ -d ../shared/scenes ]; then
   find ../shared/scenes -type f \( -name '*.gltf' -o -name '*.glb' \) -size -256k -exec cp -t "$corpus" {} + 2>/dev/null || true
 fi
 cp scenes/*.gltf "$corpus"/
 # -detect_leaks=0: LeakSanitizer's per-input check itself died with SIGSEGV in its tracer
 # here (an empty "crash" input), which is not a finding; the test run above checks leaks.
-build-asan/bin/manylight_fuzz_gltf -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+build-asan/bin/manylight_fuzz_gltf_loader -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
   -detect_leaks=0 -artifact_prefix=build-asan/ "$corpus"
+
+# Light lists: the first byte of an input picks the format (0 CSV, 1 JSON, 2 the UE4 dump).
+printf '\000x,y,z,r,g,b,brightness,radius,falloff\n1,2,3,255,76,216,5000,250,inverse-square\n' > "$lists/csv"
+printf '\001{"lights": [{"position": [1, 2, 3], "color": [255, 76, 216], "brightness": 5, "radius": 2}]}' > "$lists/json"
+printf '\002GUID C2C1 - Position X=-300.000 Y=0.000 Z=150.000 W=1.000 - Radius 250 - Color (R=255,G=76,B=216,A=0) - Brightness = 5000\n' > "$lists/dump"
+build-asan/bin/manylight_fuzz_light_list -max_total_time="$(( seconds / 3 + 1 ))" -timeout=10 -rss_limit_mb=2048 \
+  -detect_leaks=0 -artifact_prefix=build-asan/ "$lists"
