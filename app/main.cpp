@@ -2,6 +2,7 @@
 // one-line "manylight: FILE: problem" and a named exit code. No rendering logic lives here.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -25,6 +26,7 @@ enum ExitCode : int {
   kExitFailure = 1,  // bad input or a failed render
   kExitUsage = 2,    // bad command line
   kExitNoContext = 3,  // no OpenGL 3.3 context could be created
+  kExitDiffer = 4,     // compare: the images differ beyond the thresholds
 };
 
 double msSince(Clock::time_point t) {
@@ -119,6 +121,35 @@ int runFitGamma(const FitArgs& a) {
   std::printf("largest difference from the sRGB curve = %d codes (at code %d)\n", c.largestCodeDifference,
               c.worstCode);
   return kExitOk;
+}
+
+struct CompareArgs {
+  std::string a, b, diff;
+  CompareThresholds thresholds;
+};
+
+// "out/b.png" → "out/b.diff.png"
+std::string defaultDiffPath(const std::string& b) {
+  std::filesystem::path p(b);
+  return (p.parent_path() / (p.stem().string() + ".diff.png")).string();
+}
+
+int runCompare(const CompareArgs& a) {
+  const std::string diffPath = a.diff.empty() ? defaultDiffPath(a.b) : a.diff;
+  const CompareOutcome out = compareImageFiles(a.a, a.b, a.thresholds, diffPath);
+  const ImageComparison& v = out.values;
+  if (!v.sameShape) {
+    std::printf("%s %s: differ: %dx%d with %d channels against %dx%d with %d\n", a.a.c_str(), a.b.c_str(), v.width[0],
+                v.height[0], v.channels[0], v.width[1], v.height[1], v.channels[1]);
+    return kExitDiffer;
+  }
+  std::printf("%s %s: %s: %lld of %lld values (%.4g%%) off by more than %g; max %g at pixel (%d, %d) channel %d; "
+              "mean %g; RMS %g; PSNR %.2f dB%s%s\n",
+              a.a.c_str(), a.b.c_str(), out.passed ? "match" : "differ", v.failing, v.values,
+              v.values > 0 ? 100.0 * double(v.failing) / double(v.values) : 0.0, a.thresholds.maxAbs, v.maxError,
+              v.maxX, v.maxY, v.maxChannel, v.meanError, v.rmsError, v.psnr, out.diffWritten ? "; difference: " : "",
+              out.diffWritten ? diffPath.c_str() : "");
+  return out.passed ? kExitOk : kExitDiffer;
 }
 
 struct RenderArgs {
@@ -303,6 +334,20 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   fit->add_option("--backend", f.backend, "Context for --calibrate: auto, egl, osmesa")->capture_default_str();
   fit->add_flag("-v,--verbose", f.verbose, "Say which context was chosen");
+  CompareArgs c;
+  CLI::App* compare = app.add_subcommand(
+      "compare", "Compare two images value by value (OpenImageIO); exit 0 when they match, 4 when they differ");
+  compare->add_option("a", c.a, "First image (any format OpenImageIO reads)")->required();
+  compare->add_option("b", c.b, "Second image")->required();
+  compare->add_option("--max-abs", c.thresholds.maxAbs,
+                      "A value may differ by this much (8-bit files are read as code/255: 0.004 allows one code)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e30));
+  compare->add_option("--max-fraction", c.thresholds.maxFraction,
+                      "The share of values (0..1) allowed to differ by more than --max-abs")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  compare->add_option("--diff", c.diff, "Where to write the difference image when they differ (default: B.diff.png)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -311,6 +356,7 @@ int main(int argc, char** argv) {
   try {
     if (*render) return runRender(r, processStart);
     if (*fit) return runFitGamma(f);
+    if (*compare) return runCompare(c);
   } catch (const CLI::ParseError& e) {
     std::cerr << "manylight: " << e.what() << "\n";
     return kExitUsage;
@@ -318,7 +364,7 @@ int main(int argc, char** argv) {
     std::cerr << "manylight: " << e.what() << "\n";
     return kExitFailure;
   } catch (const std::exception& e) {
-    const std::string& subject = *fit ? (f.pairs.empty() ? f.calibrate : f.pairs) : r.scene;
+    const std::string& subject = *fit ? (f.pairs.empty() ? f.calibrate : f.pairs) : *compare ? c.a : r.scene;
     std::cerr << "manylight: " << subject << ": " << e.what() << "\n";
     return kExitFailure;
   }

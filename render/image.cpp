@@ -65,4 +65,28 @@ Image readImage(const std::string& path) {
   return img;
 }
 
+CompareOutcome compareImageFiles(const std::string& a, const std::string& b, const CompareThresholds& thresholds,
+                                 const std::string& diffPath) {
+  CompareOutcome out;
+  std::string reason;
+  if (!imageIo().compareFiles(a.c_str(), b.c_str(), thresholds.maxAbs, nullptr, 0.0, &out.values, &reason)) {
+    throw ImageError(reason);
+  }
+  const ImageComparison& v = out.values;
+  out.passed = v.sameShape && double(v.failing) <= thresholds.maxFraction * double(v.values);
+  if (out.passed || !v.sameShape || diffPath.empty()) return out;
+  if (fs::path(diffPath).extension() != ".png") throw ImageError(diffPath + ": the difference image must be a .png");
+  const fs::path tmp = prepareTemporaryFor(diffPath);
+  const double scale = thresholds.maxAbs > 0.0 ? 0.5 / thresholds.maxAbs : 127.5;
+  ImageComparison again;
+  if (!imageIo().compareFiles(a.c_str(), b.c_str(), thresholds.maxAbs, tmp.c_str(), scale, &again, &reason)) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw ImageError(diffPath + ": cannot write the difference image: " + reason);
+  }
+  commitTemporary(tmp, diffPath);
+  out.diffWritten = true;
+  return out;
+}
+
 }  // namespace manylight

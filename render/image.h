@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/error.h"
+#include "scene/image_io_module.h"  // ImageComparison
 #include "scene/srgb.h"  // the PNG encoding
 
 namespace manylight {
@@ -36,5 +37,24 @@ void checkOutputPath(const std::string& path);
 // Reads an image as float RGBA (8-bit files as their codes / 255, not decoded). Throws
 // ImageError.
 Image readImage(const std::string& path);
+
+// `manylight compare`: two image files, value by value, against two thresholds.
+struct CompareThresholds {
+  double maxAbs = 0.0;       // a value may differ by this much (8-bit files: codes / 255)
+  double maxFraction = 0.0;  // the share of values allowed to differ by more
+};
+
+struct CompareOutcome {
+  ImageComparison values;
+  bool passed = false;  // same shape, and at most maxFraction of the values beyond maxAbs
+  bool diffWritten = false;
+};
+
+// Compares the files `a` and `b` with OpenImageIO's comparison. When they fail and
+// `diffPath` is not empty, writes the difference there (|a − b| / (2·maxAbs), clamped, as an
+// 8-bit PNG: values at the threshold show mid-grey; with maxAbs 0, one 8-bit code does),
+// through a temporary file. Throws ImageError when a file cannot be read or written.
+CompareOutcome compareImageFiles(const std::string& a, const std::string& b, const CompareThresholds& thresholds,
+                                 const std::string& diffPath);
 
 }  // namespace manylight

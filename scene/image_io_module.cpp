@@ -2,6 +2,8 @@
 #include "scene/image_io_module.h"
 
 #include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 namespace manylight {
@@ -78,7 +80,45 @@ bool readFloat(const char* path, RawImage<float>* out, std::string* error) {
   return readPixels(*in, OIIO::TypeDesc::FLOAT, out, error);
 }
 
-const ImageIoApi kApi = {ImageIoApi::kVersion, decode8, encodePng8, writeSrgb8, writeLinearFloat, readFloat};
+bool compareFiles(const char* a, const char* b, double threshold, const char* diffPath, double diffScale,
+                  ImageComparison* out, std::string* error) {
+  OIIO::ImageBuf images[2] = {OIIO::ImageBuf(a), OIIO::ImageBuf(b)};
+  for (int i = 0; i < 2; ++i) {
+    if (!images[i].read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+      return fail(error, std::string(i ? b : a) + ": cannot read image: " + images[i].geterror());
+    }
+    const OIIO::ImageSpec& spec = images[i].spec();
+    out->width[i] = spec.width;
+    out->height[i] = spec.height;
+    out->channels[i] = spec.nchannels;
+  }
+  out->sameShape = out->width[0] == out->width[1] && out->height[0] == out->height[1] &&
+                   out->channels[0] == out->channels[1];
+  if (!out->sameShape) return true;
+  const auto r = OIIO::ImageBufAlgo::compare(images[0], images[1], float(threshold), float(threshold));
+  // r.error only says that some value failed; errors of the comparison itself land here.
+  if (images[0].has_error() || images[1].has_error()) return fail(error, images[0].geterror() + images[1].geterror());
+  out->maxError = r.maxerror;
+  out->meanError = r.meanerror;
+  out->rmsError = r.rms_error;
+  out->psnr = r.PSNR;
+  out->maxX = r.maxx;
+  out->maxY = r.maxy;
+  out->maxChannel = r.maxc;
+  out->failing = static_cast<long long>(r.nfail);
+  out->values = static_cast<long long>(out->width[0]) * out->height[0] * out->channels[0];
+  if (!diffPath) return true;
+  OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(images[0], images[1]);
+  diff = OIIO::ImageBufAlgo::mul(diff, float(diffScale));
+  diff = OIIO::ImageBufAlgo::channels(diff, std::min(3, out->channels[0]), {});
+  diff = OIIO::ImageBufAlgo::clamp(diff, 0.0f, 1.0f);
+  if (diff.has_error()) return fail(error, diff.geterror());
+  diff.specmod().attribute("DateTime", "");
+  return diff.write(diffPath, OIIO::TypeDesc::UINT8, "png") ? true : fail(error, diff.geterror() + OIIO::geterror());
+}
+
+const ImageIoApi kApi = {ImageIoApi::kVersion, decode8, encodePng8, writeSrgb8, writeLinearFloat, readFloat,
+                         compareFiles};
 
 }  // namespace
 }  // namespace manylight

@@ -24,9 +24,20 @@ struct RawImage {
   std::vector<T> pixels;
 };
 
+// Two image files compared value by value (every channel of every pixel, as floats: 8-bit
+// files as code / 255) by OpenImageIO's ImageBufAlgo::compare.
+struct ImageComparison {
+  int width[2] = {0, 0}, height[2] = {0, 0}, channels[2] = {0, 0};
+  bool sameShape = false;  // same width, height and channel count; nothing else is compared
+  double maxError = 0.0, meanError = 0.0, rmsError = 0.0, psnr = 0.0;
+  int maxX = 0, maxY = 0, maxChannel = 0;  // where the largest difference is
+  long long values = 0;   // channel values compared
+  long long failing = 0;  // of them, off by more than the threshold
+};
+
 struct ImageIoApi {
   // Bumped whenever this struct changes; the loader refuses a module built for another.
-  static constexpr int kVersion = 2;
+  static constexpr int kVersion = 3;
   int version;
   // Decodes an encoded image held in memory; `extension` (".png", ".jpg") picks the reader.
   // Refuses, from the header and before decoding, an image wider or taller than
@@ -43,6 +54,11 @@ struct ImageIoApi {
   bool (*writeLinearFloat)(const char* path, const RawImage<float>& image, std::string* error);
   // Reads any image OpenImageIO reads as float channels (8-bit files as code / 255).
   bool (*readFloat)(const char* path, RawImage<float>* out, std::string* error);
+  // Compares files `a` and `b`; values off by more than `threshold` count as failing. When
+  // `diffPath` is not null and the shapes agree, also writes |a − b| · diffScale, clamped,
+  // as an 8-bit PNG (colour channels only) there.
+  bool (*compareFiles)(const char* a, const char* b, double threshold, const char* diffPath, double diffScale,
+                       ImageComparison* out, std::string* error);
 };
 
 }  // namespace manylight

@@ -202,6 +202,45 @@ TEST(Cli, LightListsAddToTheScenesLights) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(Cli, CompareAssertsARenderAgainstAStoredImage) {
+  const fs::path dir = testFolder();
+  const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
+  const std::string a = (dir / "a.png").string(), b = (dir / "b.png").string(), small = (dir / "small.png").string();
+  ASSERT_EQ(manylight("render " + scene + " -o " + a + " --size 64x48").exitCode, 0);
+  ASSERT_EQ(manylight("render " + scene + " -o " + b + " --size 64x48 --exposure 0.05").exitCode, 0);
+  ASSERT_EQ(manylight("render " + scene + " -o " + small + " --size 32x48").exitCode, 0);
+
+  ProcessResult r = manylight("compare " + a + " " + a);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find(": match: 0 of 12288 values"), std::string::npos) << r.out;
+
+  // A 3.5% brighter image: up to 4 codes (0.0157) apart.
+  r = manylight("compare " + a + " " + b);
+  EXPECT_EQ(r.exitCode, 4);
+  EXPECT_NE(r.out.find(": differ: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("max 0.0156863"), std::string::npos) << r.out;
+  const fs::path diff = dir / "b.diff.png";
+  ASSERT_TRUE(fs::exists(diff)) << "the difference image is written on failure";
+  const Image d = readImage(diff.string());
+  EXPECT_EQ(d.width, 64);
+  fs::remove(diff);
+
+  EXPECT_EQ(manylight("compare " + a + " " + b + " --max-abs 0.016").exitCode, 0);
+  // Or allow the differing values as a share: below it fails, above it passes.
+  EXPECT_EQ(manylight("compare " + a + " " + b + " --max-fraction 0.1 --diff " + (dir / "d.png").string()).exitCode, 4);
+  EXPECT_TRUE(fs::exists(dir / "d.png"));
+  EXPECT_EQ(manylight("compare " + a + " " + b + " --max-fraction 0.5").exitCode, 0);
+  EXPECT_FALSE(fs::exists(diff)) << "no difference image when they match";
+
+  r = manylight("compare " + a + " " + small);
+  EXPECT_EQ(r.exitCode, 4);
+  EXPECT_NE(r.out.find("differ: 64x48 with 4 channels against 32x48 with 4"), std::string::npos) << r.out;
+  const std::string missing = (dir / "missing.png").string();
+  r = manylight("compare " + a + " " + missing);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err.rfind("manylight: " + missing + ": cannot read image: ", 0), 0u) << r.err;
+}
+
 TEST(Cli, RerenderingIsBitIdenticalAndBackendsAgree) {
   RoomOptions o;
   o.lightCount = 32;
