@@ -11,6 +11,7 @@
 #include "gl/context.h"
 #include "render/colour_calibration.h"
 #include "render/output_file.h"
+#include "render/progress.h"
 #include "render/render_job.h"
 #include "bake/light_tree_layout.h"
 #include "scene/gltf_loader.h"
@@ -152,8 +153,16 @@ int runCompare(const CompareArgs& a) {
   return out.passed ? kExitOk : kExitDiffer;
 }
 
+// "I/N" with 0 <= I < N.
+bool parseShard(const std::string& text, Shard& shard) {
+  char tail = 0;
+  return std::sscanf(text.c_str(), "%d/%d%c", &shard.index, &shard.count, &tail) == 2 && shard.count >= 1 &&
+         shard.index >= 0 && shard.index < shard.count;
+}
+
 struct RenderArgs {
-  std::string scene, output, size = "640x480", method = "reference", backend = "auto";
+  std::vector<std::string> scenes;
+  std::string output, outDir, format = "png", shard, size = "640x480", method = "reference", backend = "auto";
   std::string ambient = "0,0,0", statsPath, errorMode = "node", treeSplit = "metric", nodeColour = "rgb9e5";
   std::string lightList;
   float error = 0.02f;
@@ -165,12 +174,79 @@ struct RenderArgs {
   bool verbose = false;
 };
 
+// Loads, renders and writes one scene; returns its stats. Throws Error.
+nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request, const std::string& scenePath,
+                         const std::string& output, const gl::Context& context) {
+  const auto start = Clock::now();
+  LoadOptions options = a.limits;
+  options.lightBudget = a.lightBudget;
+  Scene scene = loadGltf(scenePath, options);
+  if (!a.lightList.empty()) appendLightList(a.lightList, scene, options);
+  const double loadMs = msSince(start);
+  for (const std::string& w : scene.warnings) std::cerr << "manylight: " << scenePath << ": warning: " << w << "\n";
+  const RenderOutcome out = renderScene(scene, request);
+  if (out.framed && a.verbose) std::cerr << "manylight: " << scenePath << ": no camera; framing the bounds\n";
+  if (out.defaultRig) std::cerr << "manylight: " << scenePath << ": no lights; using the default three-light rig\n";
+  writeImage(out.image, output, a.exposure);
+  nlohmann::json stats = {
+      {"scene", scenePath},
+      {"output", output},
+      {"method", methodName(request.method)},
+      {"backend", context.backend()},
+      {"renderer", context.renderer()},
+      {"gl_version", context.version()},
+      {"width", request.width},
+      {"height", request.height},
+      {"lights", out.lightCount},
+      {"default_light_rig", out.defaultRig},
+      {"framed_camera", out.framed},
+      {"lighting_passes", out.frame.lightingPasses},
+      {"load_ms", loadMs},
+      {"render_ms", out.frame.renderMs},
+      {"scene_ms", msSince(start)},
+      {"degenerate_triangles", scene.topology.degenerateTriangles},
+      {"boundary_edges", scene.topology.boundaryEdges},
+      {"non_manifold_edges", scene.topology.nonManifoldEdges},
+  };
+  if (request.method != Method::Reference) {
+    const CutStats& c = out.frame.cuts;
+    stats["bake_ms"] = out.bakeMs;
+    stats["avg_cut_size"] = c.averageCut;
+    stats["max_cut_size"] = c.maxCut;
+    stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
+    stats["light_evaluations_per_pixel"] = c.lightEvaluations;
+    stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
+    stats["covered_pixels"] = c.pixels;
+    if (request.method == Method::Lightcuts) {
+      stats["error"] = request.lightcuts.error;
+      stats["error_mode"] = a.errorMode;
+    }
+    stats["max_cut"] = request.lightcuts.maxCut;
+    stats["tree_split"] = a.treeSplit;
+    stats["node_colour"] = nodeColourStats(out.nodeColour);
+  }
+  if (a.verbose) {
+    std::cerr << "manylight: " << output << ": " << request.width << "x" << request.height << ", " << out.lightCount
+              << " lights, load " << loadMs << " ms, render " << out.frame.renderMs << " ms\n";
+  }
+  return stats;
+}
+
 int runRender(const RenderArgs& a, Clock::time_point processStart) {
   RenderRequest request;
   char tail = 0;
   if (std::sscanf(a.size.c_str(), "%dx%d%c", &request.width, &request.height, &tail) != 2 ||
       request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384) {
     std::cerr << "manylight: --size: expected WxH within 1..16384, got '" << a.size << "'\n";
+    return kExitUsage;
+  }
+  const bool batch = !a.outDir.empty();
+  if (batch == !a.output.empty()) {
+    std::cerr << "manylight: render: give either -o OUTPUT (one scene) or --out-dir DIR (any number)\n";
+    return kExitUsage;
+  }
+  if (!batch && a.scenes.size() != 1) {
+    std::cerr << "manylight: render: -o takes one scene, got " << a.scenes.size() << "; use --out-dir for several\n";
     return kExitUsage;
   }
   request.camera = a.camera;
@@ -182,70 +258,62 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.lightcuts.trees.split = a.treeSplit == "metric" ? Split::Metric : Split::LongestAxis;
   request.lightcuts.trees.nodeColour = a.nodeColour == "fitted" ? NodeColourCoding::Fitted : NodeColourCoding::Rgb9e5;
   const gl::Backend backend = gl::parseBackend(a.backend);
-  checkOutputPath(a.output);
-
-  const auto loadStart = Clock::now();
-  LoadOptions options = a.limits;
-  options.lightBudget = a.lightBudget;
-  Scene scene = loadGltf(a.scene, options);
-  if (!a.lightList.empty()) appendLightList(a.lightList, scene, options);
-  const double loadMs = msSince(loadStart);
-  for (const std::string& w : scene.warnings) std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";
+  std::vector<Thumbnail> jobs;
+  if (batch) {
+    Shard shard;
+    if (!a.shard.empty() && !parseShard(a.shard, shard)) {
+      std::cerr << "manylight: --shard: expected I/N with 0 <= I < N, got '" << a.shard << "'\n";
+      return kExitUsage;
+    }
+    jobs = planThumbnails(a.scenes, a.outDir, a.format, shard);
+  } else {
+    checkOutputPath(a.output);
+    jobs.push_back({a.scenes[0], a.output});
+  }
 
   const std::unique_ptr<gl::Context> context = openContext(backend, a.verbose);
   if (!context) return kExitNoContext;
-  const RenderOutcome out = renderScene(scene, request);
-  if (out.framed && a.verbose) std::cerr << "manylight: " << a.scene << ": no camera; framing the bounds\n";
-  if (out.defaultRig) {
-    std::cerr << "manylight: " << a.scene << ": no lights; using the default three-light rig\n";
+  if (!batch) {
+    nlohmann::json stats = renderOne(a, request, jobs[0].scene, jobs[0].output, *context);
+    stats["total_ms"] = msSince(processStart);
+    if (!a.statsPath.empty()) writeTextFileAtomic(a.statsPath, stats.dump(2) + "\n");
+    return kExitOk;
   }
-  writeImage(out.image, a.output, a.exposure);
-  if (!a.statsPath.empty()) {
-    nlohmann::json stats = {
-        {"scene", a.scene},
-        {"output", a.output},
-        {"method", methodName(request.method)},
-        {"backend", context->backend()},
-        {"renderer", context->renderer()},
-        {"gl_version", context->version()},
-        {"width", request.width},
-        {"height", request.height},
-        {"lights", out.lightCount},
-        {"default_light_rig", out.defaultRig},
-        {"framed_camera", out.framed},
-        {"lighting_passes", out.frame.lightingPasses},
-        {"load_ms", loadMs},
-        {"render_ms", out.frame.renderMs},
-        {"total_ms", msSince(processStart)},
-        {"degenerate_triangles", scene.topology.degenerateTriangles},
-        {"boundary_edges", scene.topology.boundaryEdges},
-        {"non_manifold_edges", scene.topology.nonManifoldEdges},
-    };
-    if (request.method != Method::Reference) {
-      const CutStats& c = out.frame.cuts;
-      stats["bake_ms"] = out.bakeMs;
-      stats["avg_cut_size"] = c.averageCut;
-      stats["max_cut_size"] = c.maxCut;
-      stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
-      stats["light_evaluations_per_pixel"] = c.lightEvaluations;
-      stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
-      stats["covered_pixels"] = c.pixels;
-      if (request.method == Method::Lightcuts) {
-        stats["error"] = request.lightcuts.error;
-        stats["error_mode"] = a.errorMode;
-      }
-      stats["max_cut"] = request.lightcuts.maxCut;
-      stats["tree_split"] = a.treeSplit;
-      stats["node_colour"] = nodeColourStats(out.nodeColour);
+  // A batch: one context for all; a failing scene is reported and the rest go on.
+  nlohmann::json all = nlohmann::json::array();
+  int failed = 0;
+  Progress progress(int(jobs.size()));
+  for (const Thumbnail& job : jobs) {
+    progress.step(job.scene);
+    try {
+      all.push_back(renderOne(a, request, job.scene, job.output, *context));
+    } catch (const Error& e) {
+      progress.clear();
+      std::cerr << "manylight: " << e.what() << "\n";
+      all.push_back({{"scene", job.scene}, {"output", job.output}, {"error", e.what()}});
+      ++failed;
+    } catch (const std::exception& e) {
+      progress.clear();
+      std::cerr << "manylight: " << job.scene << ": " << e.what() << "\n";
+      all.push_back({{"scene", job.scene}, {"output", job.output}, {"error", e.what()}});
+      ++failed;
     }
+  }
+  progress.clear();
+  const double totalMs = msSince(processStart);
+  std::cerr << "manylight: rendered " << jobs.size() - failed << " of " << jobs.size() << " scenes into " << a.outDir
+            << (failed ? ", " + std::to_string(failed) + " failed" : std::string()) << " (" << std::lround(totalMs)
+            << " ms)\n";
+  if (!a.statsPath.empty()) {
+    const nlohmann::json stats = {{"scenes", all},
+                                  {"rendered", int(jobs.size()) - failed},
+                                  {"failed", failed},
+                                  {"shard", a.shard.empty() ? "0/1" : a.shard},
+                                  {"backend", context->backend()},
+                                  {"total_ms", totalMs}};
     writeTextFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
-  if (a.verbose) {
-    std::cerr << "manylight: " << a.output << ": " << request.width << "x" << request.height
-              << ", " << out.lightCount << " lights, load " << loadMs << " ms, render "
-              << out.frame.renderMs << " ms\n";
-  }
-  return kExitOk;
+  return failed ? kExitFailure : kExitOk;
 }
 
 }  // namespace
@@ -255,9 +323,17 @@ int main(int argc, char** argv) {
   CLI::App app{"manylight: headless OpenGL renderer for glTF scenes with many lights"};
   app.require_subcommand(1);
   RenderArgs r;
-  CLI::App* render = app.add_subcommand("render", "Render a glTF scene (.gltf or .glb) to an image");
-  render->add_option("scene", r.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
-  render->add_option("-o,--output", r.output, "Output image: .png (8-bit sRGB) or .exr (linear float)")->required();
+  CLI::App* render = app.add_subcommand("render", "Render glTF scenes (.gltf or .glb) to images");
+  render->add_option("scenes", r.scenes, "glTF 2.0 scenes (.gltf or .glb); several with --out-dir")->required();
+  render->add_option("-o,--output", r.output, "Output image: .png (8-bit sRGB) or .exr (linear float)");
+  render->add_option("--out-dir", r.outDir,
+                     "Render every scene into DIR/NAME.png (or --format) in one process and one context; a "
+                     "failing scene is reported and the others go on");
+  render->add_option("--format", r.format, "--out-dir: png or exr")->capture_default_str()->check(
+      CLI::IsMember({"png", "exr"}));
+  render->add_option("--shard", r.shard,
+                     "--out-dir: I/N renders scenes I, I+N, I+2N, ... (0 <= I < N) of the list, to spread a batch "
+                     "over machines");
   render->add_option("--size", r.size, "Image size WxH")->capture_default_str();
   render->add_option("--camera", r.camera,
                      "Index of the glTF camera to use (default: the first; with none, frame the "
@@ -364,7 +440,9 @@ int main(int argc, char** argv) {
     std::cerr << "manylight: " << e.what() << "\n";
     return kExitFailure;
   } catch (const std::exception& e) {
-    const std::string& subject = *fit ? (f.pairs.empty() ? f.calibrate : f.pairs) : *compare ? c.a : r.scene;
+    const std::string& subject = *fit       ? (f.pairs.empty() ? f.calibrate : f.pairs)
+                                 : *compare ? c.a
+                                 : r.scenes.empty() ? std::string("render") : r.scenes[0];
     std::cerr << "manylight: " << subject << ": " << e.what() << "\n";
     return kExitFailure;
   }

@@ -1,6 +1,7 @@
 #include "gl/context.h"
 
 #include "gl/api.h"
+#include "gl/objects.h"
 
 namespace manylight::gl {
 
@@ -11,6 +12,44 @@ Backend parseBackend(const std::string& name) {
   if (name == "egl") return Backend::Egl;
   if (name == "osmesa") return Backend::OSMesa;
   throw GlError("unknown backend '" + name + "', expected auto, egl or osmesa");
+}
+
+namespace {
+Context* gCurrent = nullptr;
+}  // namespace
+
+Context::Context(std::string backend) : backend_(std::move(backend)) {}
+
+Context::~Context() {
+  if (gCurrent == this) gCurrent = nullptr;
+}
+
+Context* Context::current() { return gCurrent; }
+
+void Context::releasePrograms() { programs_.clear(); }
+
+const Program& Context::program(std::string_view vertex, std::string_view fragment,
+                                const std::vector<std::string>& defines, const std::vector<std::string>& outputs) {
+  std::string key = std::string(vertex) + "|" + std::string(fragment);
+  for (const std::string& d : defines) key += "|" + d;
+  key += "|>";
+  for (const std::string& o : outputs) key += "|" + o;
+  std::unique_ptr<Program>& slot = programs_[key];
+  if (!slot) {
+    try {
+      slot = std::make_unique<Program>(vertex, fragment, defines, outputs);
+    } catch (...) {
+      programs_.erase(key);
+      throw;
+    }
+  }
+  return *slot;
+}
+
+const Program& cachedProgram(std::string_view vertex, std::string_view fragment, const std::vector<std::string>& defines,
+                             const std::vector<std::string>& outputs) {
+  if (!gCurrent) throw GlError("no OpenGL context to compile " + std::string(fragment) + " in");
+  return gCurrent->program(vertex, fragment, defines, outputs);
 }
 
 void Context::finishSetup(void* (*getProcAddress)(const char*)) {
@@ -31,6 +70,7 @@ void Context::finishSetup(void* (*getProcAddress)(const char*)) {
     throw GlError(backend_ + ": OpenGL 3.3 core is required, got " + version_ + " (GL_RENDERER " +
                   renderer_ + ")");
   }
+  gCurrent = this;
 }
 
 std::unique_ptr<Context> createContext(Backend backend, std::vector<std::string>* attempts) {

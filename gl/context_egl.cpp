@@ -60,7 +60,10 @@ class EglContextImpl final : public Context {
       throw;
     }
   }
-  ~EglContextImpl() override { release(); }
+  ~EglContextImpl() override {
+    releasePrograms();
+    release();
+  }
 
  private:
   void create(const std::string& where) {

@@ -35,6 +35,7 @@ class OSMesaContextImpl final : public Context {
     }
   }
   ~OSMesaContextImpl() override {
+    releasePrograms();
     OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
     OSMesaDestroyContext(ctx_);
   }

@@ -38,12 +38,7 @@ LightcutsMethod::LightcutsMethod(const std::vector<Light>& lights, const GBuffer
 }
 
 const gl::Program& LightcutsMethod::program(const std::vector<std::string>& defines) const {
-  auto it = programs_.find(defines);
-  if (it == programs_.end()) {
-    it = programs_.emplace(defines, gl::Program("fullscreen.vert", "lighting_lightcuts.frag", defines,
-                                                {"oRadiance", "oCutStats"})).first;
-  }
-  return it->second;
+  return gl::cachedProgram("fullscreen.vert", "lighting_lightcuts.frag", defines, {"oRadiance", "oCutStats"});
 }
 
 void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,

@@ -2,7 +2,6 @@
 // Lightcuts: the light trees of bake/light_tree.h in a node texture, and a per-pixel cut
 // through them in the fragment shader (glsl/lighting_lightcuts.frag documents the bounds
 // and stopping rules).
-#include <map>
 #include <string>
 #include <vector>
 
@@ -68,7 +67,6 @@ class LightcutsMethod {
   int width_, height_;
   gl::Texture statsTarget_;
   gl::Framebuffer framebuffer_;  // radiance + statistics
-  mutable std::map<std::vector<std::string>, gl::Program> programs_;
 };
 
 }  // namespace manylight

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "gl/context.h"
 #include "render/lighting_inputs.h"
 
 namespace manylight {
@@ -18,12 +19,7 @@ std::vector<std::string> ReferenceMethod::variant(const GpuScene& scene) {
 }
 
 const gl::Program& ReferenceMethod::program(const std::vector<std::string>& defines) const {
-  auto it = programs_.find(defines);
-  if (it == programs_.end()) {
-    it = programs_.emplace(defines, gl::Program("fullscreen.vert", "lighting_reference.frag", defines,
-                                                {"oRadiance"})).first;
-  }
-  return it->second;
+  return gl::cachedProgram("fullscreen.vert", "lighting_reference.frag", defines, {"oRadiance"});
 }
 
 int ReferenceMethod::lightsPerPass(int pixels) {

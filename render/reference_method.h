@@ -1,7 +1,6 @@
 #pragma once
 // The reference method: every light at every pixel, exact up to float arithmetic. Ground
 // truth for every other method.
-#include <map>
 #include <string>
 #include <vector>
 
@@ -14,7 +13,8 @@ namespace manylight {
 
 class ReferenceMethod {
  public:
-  // Needs a current context. Programs are compiled on first use, one per variant.
+  // Needs a current context. Programs are compiled on first use, one per variant, and kept
+  // by the context (gl::Context::program).
   ReferenceMethod() = default;
 
   // The #defines of the lighting program for a scene: its light types and whether any
@@ -36,10 +36,8 @@ class ReferenceMethod {
   static constexpr int kMaxLightsPerPass = 1 << 16;
 
  private:
-  // Compiles (once) and returns the program for `defines`. Throws gl::GlError.
+  // Compiles (once per context) and returns the program for `defines`. Throws gl::GlError.
   const gl::Program& program(const std::vector<std::string>& defines) const;
-
-  mutable std::map<std::vector<std::string>, gl::Program> programs_;
 };
 
 }  // namespace manylight

@@ -1,5 +1,8 @@
 #include "render/render_job.h"
 
+#include <filesystem>
+#include <map>
+
 namespace manylight {
 
 Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* framed) {
@@ -28,6 +31,22 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   if (renderer.lightcuts()) out.nodeColour = renderer.lightcuts()->nodeColour();
   out.image = renderer.render(makeView(camera, request.width, request.height), settings, &out.frame);
   return out;
+}
+
+std::vector<Thumbnail> planThumbnails(const std::vector<std::string>& scenes, const std::string& outDir,
+                                      const std::string& format, Shard shard) {
+  std::vector<Thumbnail> jobs;
+  std::map<std::string, std::string> writer;  // output → the scene that writes it
+  for (std::size_t i = std::size_t(shard.index); i < scenes.size(); i += std::size_t(shard.count)) {
+    const std::string output =
+        (std::filesystem::path(outDir) / (std::filesystem::path(scenes[i]).stem().string() + "." + format)).string();
+    const auto [it, added] = writer.emplace(output, scenes[i]);
+    if (!added) {
+      throw Error(scenes[i] + ": would write " + output + ", as " + it->second + " does; give scenes distinct names");
+    }
+    jobs.push_back({scenes[i], output});
+  }
+  return jobs;
 }
 
 }  // namespace manylight

@@ -35,4 +35,17 @@ Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* fra
 // Renders with the current context. Throws Error (bad request) or gl::GlError.
 RenderOutcome renderScene(const Scene& scene, const RenderRequest& request);
 
+// A batch of thumbnails (`render --out-dir`): which scenes this machine renders, and where.
+struct Shard {
+  int index = 0;  // 0 <= index < count
+  int count = 1;
+};
+struct Thumbnail {
+  std::string scene, output;
+};
+// Scenes index, index + count, ... of `scenes` (in the order given), each to
+// outDir/STEM.format. Throws Error when two of them would write the same file.
+std::vector<Thumbnail> planThumbnails(const std::vector<std::string>& scenes, const std::string& outDir,
+                                      const std::string& format, Shard shard);
+
 }  // namespace manylight

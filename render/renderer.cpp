@@ -33,8 +33,8 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
     : scene_(scene),
       gpu_(scene, lights),
       gbuffer_(width, height),
-      geometry_("gbuffer.vert", "gbuffer.frag", {},
-                {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"}) {
+      geometry_(gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {},
+                                  {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"})) {
   const gl::Program& p = geometry_;
   uniforms_ = {p.uniform("uViewProjection"), p.uniform("uAmbient"), p.uniform("uBaseColorTexture"),
                p.uniform("uModel"), p.uniform("uNormalMatrix"), p.uniform("uBaseColorFactor"),

@@ -63,7 +63,7 @@ class Renderer {
   const Scene& scene_;
   GpuScene gpu_;
   GBuffer gbuffer_;
-  gl::Program geometry_;
+  const gl::Program& geometry_;  // kept by the context
   GeometryUniforms uniforms_;
   ReferenceMethod reference_;
   std::unique_ptr<LightcutsMethod> lightcuts_;

@@ -1,6 +1,7 @@
 // The manylight program as a user runs it: outputs, stats, exit codes and exact messages.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -239,6 +240,59 @@ TEST(Cli, CompareAssertsARenderAgainstAStoredImage) {
   r = manylight("compare " + a + " " + missing);
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_EQ(r.err.rfind("manylight: " + missing + ": cannot read image: ", 0), 0u) << r.err;
+}
+
+TEST(Cli, BatchesRenderEverySceneInOneProcess) {
+  const fs::path dir = testFolder();
+  std::vector<std::string> scenes;
+  for (int i = 0; i < 4; ++i) {
+    RoomOptions o;
+    o.lightCount = 2 + i;
+    o.seed = std::uint32_t(i + 1);
+    o.specular = i == 2;  // another shader variant mid-batch
+    scenes.push_back(roomScene(o, "room" + std::to_string(i) + ".gltf"));
+  }
+  const std::string bad = writeText("broken.gltf", R"({"asset": {"version": "1.0"}})");
+  std::string list = scenes[0] + " " + bad;
+  for (int i = 1; i < 4; ++i) list += " " + scenes[i];
+  const fs::path out = dir / "thumbs";
+  const ProcessResult r = manylight("render " + list + " --out-dir " + out.string() + " --size 48x32 --stats " +
+                                    (dir / "batch.json").string());
+  EXPECT_EQ(r.exitCode, 1) << "a failed scene makes the batch fail, at the end";
+  EXPECT_NE(r.err.find("manylight: " + bad + ": asset.version '1.0' is not supported, expected 2.x\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("manylight: rendered 4 of 5 scenes into " + out.string() + ", 1 failed"), std::string::npos)
+      << r.err;
+  const auto stats = nlohmann::json::parse(readFile(dir / "batch.json"));
+  EXPECT_EQ(stats["rendered"], 4);
+  EXPECT_EQ(stats["failed"], 1);
+  EXPECT_EQ(stats["scenes"][1]["error"], bad + ": asset.version '1.0' is not supported, expected 2.x");
+  // Each thumbnail is the image a process of its own renders, bit for bit.
+  for (int i = 0; i < 4; ++i) {
+    const fs::path single = dir / ("single" + std::to_string(i) + ".png");
+    ASSERT_EQ(manylight("render " + scenes[i] + " -o " + single.string() + " --size 48x32").exitCode, 0);
+    EXPECT_EQ(readFile(out / ("room" + std::to_string(i) + ".png")), readFile(single)) << i;
+  }
+  EXPECT_FALSE(fs::exists(out / "broken.png"));
+
+  // Shards: every N-th scene from I, so N machines share a batch.
+  const fs::path sharded = dir / "shard";
+  const std::string good = scenes[0] + " " + scenes[1] + " " + scenes[2] + " " + scenes[3];
+  ASSERT_EQ(manylight("render " + good + " --out-dir " + sharded.string() + " --shard 1/2 --size 16x16 --format exr")
+                .exitCode,
+            0);
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(sharded)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"room1.exr", "room3.exr"}));
+
+  EXPECT_EQ(manylight("render " + list + " --out-dir " + sharded.string() + " --shard 2/2").exitCode, 2);
+  EXPECT_EQ(manylight("render " + scenes[0] + " " + scenes[1] + " -o " + (dir / "x.png").string()).exitCode, 2);
+  const ProcessResult twice = manylight("render " + scenes[0] + " " + scenes[0] + " --out-dir " + sharded.string());
+  EXPECT_EQ(twice.exitCode, 1);
+  EXPECT_EQ(twice.err, "manylight: " + scenes[0] + ": would write " + (sharded / "room0.png").string() + ", as " +
+                           scenes[0] + " does; give scenes distinct names\n");
 }
 
 TEST(Cli, RerenderingIsBitIdenticalAndBackendsAgree) {

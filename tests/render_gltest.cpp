@@ -228,9 +228,20 @@ TEST(Shaders, EveryLightingVariantCompilesAndLinks) {
   }
   EXPECT_NO_THROW(gl::Program("gbuffer.vert", "gbuffer.frag", {}, {"gPosition"}));
   for (const std::vector<std::string>& defines : std::vector<std::vector<std::string>>{
-           {}, {"HAS_SPECULAR"}, {"DISTANCE"}, {"DISTANCE", "HAS_SPECULAR"}}) {
+           {}, {"HAS_SPECULAR"}, {"DISTANCE"}, {"DISTANCE", "HAS_SPECULAR"}, {"FITTED_COLOUR"},
+           {"FITTED_COLOUR", "HAS_SPECULAR"}}) {
     EXPECT_NO_THROW(gl::Program("fullscreen.vert", "lighting_lightcuts.frag", defines, {"oRadiance", "oCutStats"}));
   }
+}
+
+TEST(Shaders, TheContextCompilesEachProgramOnce) {
+  context();
+  const gl::Program& a = gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {}, {"gPosition"});
+  const gl::Program& b = gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {}, {"gPosition"});
+  const gl::Program& c = gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {}, {"gPosition", "gNormal"});
+  EXPECT_EQ(&a, &b);
+  EXPECT_EQ(a.id(), b.id());
+  EXPECT_NE(a.id(), c.id());
 }
 
 }  // namespace
