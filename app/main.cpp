@@ -10,9 +10,10 @@
 
 #include "gl/context.h"
 #include "render/colour_calibration.h"
-#include "render/output_file.h"
+#include "scene/output_file.h"
 #include "render/progress.h"
 #include "render/render_job.h"
+#include "bake/baked_file.h"
 #include "bake/light_tree_layout.h"
 #include "scene/gltf_loader.h"
 #include "scene/light_list.h"
@@ -160,17 +161,136 @@ bool parseShard(const std::string& text, Shard& shard) {
          shard.index >= 0 && shard.index < shard.count;
 }
 
+// What render and bake share: how a scene is read, and how its light trees are built.
+struct SceneArgs {
+  std::string lightList, treeSplit = "metric", nodeColour = "rgb9e5";
+  std::size_t lightBudget = 1u << 20;
+  LoadOptions limits;
+  CLI::Option* splitOption = nullptr;
+  CLI::Option* colourOption = nullptr;
+
+  LoadOptions options() const {
+    LoadOptions o = limits;
+    o.lightBudget = lightBudget;
+    return o;
+  }
+  TreeOptions trees() const {
+    TreeOptions t;
+    t.split = treeSplit == "metric" ? Split::Metric : Split::LongestAxis;
+    t.nodeColour = nodeColour == "fitted" ? NodeColourCoding::Fitted : NodeColourCoding::Rgb9e5;
+    return t;
+  }
+};
+
+void addSceneOptions(CLI::App* app, SceneArgs& a) {
+  a.splitOption = app->add_option("--tree-split", a.treeSplit,
+                                  "lightcuts: how the light trees pair lights: metric (the split with the smallest "
+                                  "cluster metric) or longest-axis (the k-d baseline)")
+                      ->capture_default_str()
+                      ->check(CLI::IsMember({"metric", "longest-axis"}));
+  a.colourOption = app->add_option("--node-colour", a.nodeColour,
+                                   "lightcuts: how tree nodes store their colour in one word: rgb9e5 (9-bit "
+                                   "mantissas, shared exponent; the more accurate) or fitted (8 bits per channel on "
+                                   "a power law fitted to the scene, shared exponent)")
+                       ->capture_default_str()
+                       ->check(CLI::IsMember({"fitted", "rgb9e5"}));
+  app->add_option("--lights", a.lightList,
+                  "Add point lights from a list: .csv, .json, or the Lightcuts-in-UE4 text dump "
+                  "(8-bit sRGB colours; see README)");
+  app->add_option("--light-budget", a.lightBudget, "Most lights a scene may have")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(1), std::size_t(1) << 26));
+  app->add_option("--max-file-bytes", a.limits.maxFileBytes,
+                  "Most bytes a scene may read: the glTF/GLB and its external files")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--max-texture-size", a.limits.maxTextureDimension, "Largest texture width or height")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--max-texture-pixels", a.limits.maxTexturePixels, "Most pixels in one texture")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--max-triangles", a.limits.maxTriangles, "Most triangles over all meshes")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--crease-angle", a.limits.creaseAngleDegrees,
+                  "Degrees: normals built for meshes without them are smooth across gentler edges, "
+                  "split across sharper ones")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 180.0f));
+}
+
+// A glTF scene with its light list, or a baked scene (by its magic, or the .mlbake
+// extension) with its trees. Throws Error.
+BakedScene loadAnyScene(const std::string& path, const SceneArgs& a) {
+  const bool baked = isBakedFile(path) || std::filesystem::path(path).extension() == ".mlbake";
+  if (!baked) {
+    BakedScene b;
+    b.scene = loadGltf(path, a.options());
+    if (!a.lightList.empty()) appendLightList(a.lightList, b.scene, a.options());
+    return b;
+  }
+  BakedScene b = readBakedScene(path, a.limits.maxFileBytes);
+  b.scene.name = path;  // messages name the file the user gave
+  if (!a.lightList.empty()) throw Error(path + ": a baked scene's lights are baked in; bake it again with --lights");
+  if (b.scene.lights.size() > a.lightBudget) {
+    throw Error(path + ": " + std::to_string(b.scene.lights.size()) + " lights exceed the light budget of " +
+                std::to_string(a.lightBudget) + " (--light-budget)");
+  }
+  const TreeOptions asked = a.trees();
+  if ((a.splitOption->count() > 0 && asked.split != b.trees.split) ||
+      (a.colourOption->count() > 0 && asked.nodeColour != b.trees.nodeColour)) {
+    throw Error(path + ": baked with other --tree-split or --node-colour settings; bake it again to change them");
+  }
+  return b;
+}
+
+struct BakeArgs {
+  std::string scene, output, statsPath;
+  SceneArgs input;
+};
+
+int runBake(const BakeArgs& a, Clock::time_point processStart) {
+  if (std::filesystem::path(a.output).extension() != ".mlbake") {
+    std::cerr << "manylight: " << a.output << ": a baked scene's file name must end in .mlbake\n";
+    return kExitUsage;
+  }
+  if (isBakedFile(a.scene)) throw Error(a.scene + ": already baked");
+  auto start = Clock::now();
+  Scene scene = loadGltf(a.scene, a.input.options());
+  if (!a.input.lightList.empty()) appendLightList(a.input.lightList, scene, a.input.options());
+  for (const std::string& w : scene.warnings) std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";
+  const double loadMs = msSince(start);
+  start = Clock::now();
+  const BakedScene baked = bakeScene(std::move(scene), a.input.trees());
+  const double bakeMs = msSince(start);
+  start = Clock::now();
+  writeBakedScene(a.output, baked);
+  const double writeMs = msSince(start);
+  const auto bytes = std::filesystem::file_size(a.output);
+  std::printf("%s: %zu lights, %zu tree words, %ju bytes; load %.0f ms, trees %.0f ms, write %.0f ms\n",
+              a.output.c_str(), baked.scene.lights.size(), baked.packed.words.size(), std::uintmax_t(bytes), loadMs,
+              bakeMs, writeMs);
+  if (!a.statsPath.empty()) {
+    nlohmann::json stats = {{"scene", a.scene},        {"output", a.output},   {"lights", baked.scene.lights.size()},
+                            {"bytes", bytes},          {"load_ms", loadMs},    {"bake_ms", bakeMs},
+                            {"write_ms", writeMs},     {"total_ms", msSince(processStart)},
+                            {"format_version", kBakedFormatVersion}};
+    if (baked.hasTrees) stats["node_colour"] = nodeColourStats(baked.packed.colour);
+    writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
+  }
+  return kExitOk;
+}
+
 struct RenderArgs {
   std::vector<std::string> scenes;
   std::string output, outDir, format = "png", shard, size = "640x480", method = "reference", backend = "auto";
-  std::string ambient = "0,0,0", statsPath, errorMode = "node", treeSplit = "metric", nodeColour = "rgb9e5";
-  std::string lightList;
+  std::string ambient = "0,0,0", statsPath, errorMode = "node";
   float error = 0.02f;
   int maxCut = LightcutsSettings{}.maxCut;
   int camera = -1;
   float exposure = 0.0f;
-  std::size_t lightBudget = 1u << 20;
-  LoadOptions limits;
+  SceneArgs input;
   bool verbose = false;
 };
 
@@ -178,13 +298,13 @@ struct RenderArgs {
 nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request, const std::string& scenePath,
                          const std::string& output, const gl::Context& context) {
   const auto start = Clock::now();
-  LoadOptions options = a.limits;
-  options.lightBudget = a.lightBudget;
-  Scene scene = loadGltf(scenePath, options);
-  if (!a.lightList.empty()) appendLightList(a.lightList, scene, options);
+  const BakedScene baked = loadAnyScene(scenePath, a.input);
+  const Scene& scene = baked.scene;
   const double loadMs = msSince(start);
   for (const std::string& w : scene.warnings) std::cerr << "manylight: " << scenePath << ": warning: " << w << "\n";
-  const RenderOutcome out = renderScene(scene, request);
+  RenderRequest bakedRequest = request;
+  if (baked.hasTrees) bakedRequest.prebuiltTrees = &baked.packed;
+  const RenderOutcome out = renderScene(scene, bakedRequest);
   if (out.framed && a.verbose) std::cerr << "manylight: " << scenePath << ": no camera; framing the bounds\n";
   if (out.defaultRig) std::cerr << "manylight: " << scenePath << ": no lights; using the default three-light rig\n";
   writeImage(out.image, output, a.exposure);
@@ -222,7 +342,9 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request, cons
       stats["error_mode"] = a.errorMode;
     }
     stats["max_cut"] = request.lightcuts.maxCut;
-    stats["tree_split"] = a.treeSplit;
+    stats["tree_split"] = baked.hasTrees ? (baked.trees.split == Split::Metric ? "metric" : "longest-axis")
+                                         : a.input.treeSplit;
+    stats["baked_trees"] = baked.hasTrees;
     stats["node_colour"] = nodeColourStats(out.nodeColour);
   }
   if (a.verbose) {
@@ -255,8 +377,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.lightcuts.error = a.error;
   request.lightcuts.maxCut = a.maxCut;
   request.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
-  request.lightcuts.trees.split = a.treeSplit == "metric" ? Split::Metric : Split::LongestAxis;
-  request.lightcuts.trees.nodeColour = a.nodeColour == "fitted" ? NodeColourCoding::Fitted : NodeColourCoding::Rgb9e5;
+  request.lightcuts.trees = a.input.trees();
   const gl::Backend backend = gl::parseBackend(a.backend);
   std::vector<Thumbnail> jobs;
   if (batch) {
@@ -276,7 +397,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   if (!batch) {
     nlohmann::json stats = renderOne(a, request, jobs[0].scene, jobs[0].output, *context);
     stats["total_ms"] = msSince(processStart);
-    if (!a.statsPath.empty()) writeTextFileAtomic(a.statsPath, stats.dump(2) + "\n");
+    if (!a.statsPath.empty()) writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
     return kExitOk;
   }
   // A batch: one context for all; a failing scene is reported and the rest go on.
@@ -311,7 +432,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
                                   {"shard", a.shard.empty() ? "0/1" : a.shard},
                                   {"backend", context->backend()},
                                   {"total_ms", totalMs}};
-    writeTextFileAtomic(a.statsPath, stats.dump(2) + "\n");
+    writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
   return failed ? kExitFailure : kExitOk;
 }
@@ -324,7 +445,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   RenderArgs r;
   CLI::App* render = app.add_subcommand("render", "Render glTF scenes (.gltf or .glb) to images");
-  render->add_option("scenes", r.scenes, "glTF 2.0 scenes (.gltf or .glb); several with --out-dir")->required();
+  render->add_option("scenes", r.scenes, "glTF 2.0 scenes (.gltf or .glb) or baked scenes (.mlbake); several with --out-dir")->required();
   render->add_option("-o,--output", r.output, "Output image: .png (8-bit sRGB) or .exr (linear float)");
   render->add_option("--out-dir", r.outDir,
                      "Render every scene into DIR/NAME.png (or --format) in one process and one context; a "
@@ -351,20 +472,6 @@ int main(int argc, char** argv) {
                      "(guaranteed: the sum of the cut's error bounds ≤ ε·estimate)")
       ->capture_default_str()
       ->check(CLI::IsMember({"node", "total"}));
-  render->add_option("--tree-split", r.treeSplit,
-                     "lightcuts: how the light trees pair lights: metric (the split with the smallest "
-                     "cluster metric) or longest-axis (the k-d baseline)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"metric", "longest-axis"}));
-  render->add_option("--node-colour", r.nodeColour,
-                     "lightcuts: how tree nodes store their colour in one word: rgb9e5 (9-bit "
-                     "mantissas, shared exponent; the more accurate) or fitted (8 bits per channel on "
-                     "a power law fitted to the scene, shared exponent)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"fitted", "rgb9e5"}));
-  render->add_option("--lights", r.lightList,
-                     "Add point lights from a list: .csv, .json, or the Lightcuts-in-UE4 text dump "
-                     "(8-bit sRGB colours; see README)");
   render->add_option("--max-cut", r.maxCut, "lightcuts: most nodes in a pixel's cut")
       ->capture_default_str()
       ->check(CLI::Range(1, kMaxCutLimit));
@@ -374,29 +481,16 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   render->add_option("--exposure", r.exposure, "Exposure in EV: the image is scaled by 2^EV")
       ->capture_default_str();
-  render->add_option("--light-budget", r.lightBudget, "Most lights a scene may have")
-      ->capture_default_str()
-      ->check(CLI::Range(std::size_t(1), std::size_t(1) << 26));
-  render->add_option("--max-file-bytes", r.limits.maxFileBytes,
-                     "Most bytes a scene may read: the glTF/GLB and its external files")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  render->add_option("--max-texture-size", r.limits.maxTextureDimension, "Largest texture width or height")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  render->add_option("--max-texture-pixels", r.limits.maxTexturePixels, "Most pixels in one texture")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  render->add_option("--max-triangles", r.limits.maxTriangles, "Most triangles over all meshes")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  render->add_option("--crease-angle", r.limits.creaseAngleDegrees,
-                     "Degrees: normals built for meshes without them are smooth across gentler edges, "
-                     "split across sharper ones")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0f, 180.0f));
+  addSceneOptions(render, r.input);
   render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
   render->add_flag("-v,--verbose", r.verbose, "Say which context was chosen and how long things took");
+  BakeArgs b;
+  CLI::App* bake = app.add_subcommand(
+      "bake", "Bake a glTF scene (and a light list) into one file that render loads without rebuilding anything");
+  bake->add_option("scene", b.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  bake->add_option("-o,--output", b.output, "The baked scene, NAME.mlbake")->required();
+  addSceneOptions(bake, b.input);
+  bake->add_option("--stats", b.statsPath, "Write timings and facts about the bake as JSON");
   FitArgs f;
   CLI::App* fit = app.add_subcommand(
       "fit-gamma", "Fit out = A·in^γ by least squares in log–log space, to pairs from a file or measured by rendering");
@@ -432,6 +526,7 @@ int main(int argc, char** argv) {
   try {
     if (*render) return runRender(r, processStart);
     if (*fit) return runFitGamma(f);
+    if (*bake) return runBake(b, processStart);
     if (*compare) return runCompare(c);
   } catch (const CLI::ParseError& e) {
     std::cerr << "manylight: " << e.what() << "\n";
@@ -442,6 +537,7 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     const std::string& subject = *fit       ? (f.pairs.empty() ? f.calibrate : f.pairs)
                                  : *compare ? c.a
+                                 : *bake    ? b.scene
                                  : r.scenes.empty() ? std::string("render") : r.scenes[0];
     std::cerr << "manylight: " << subject << ": " << e.what() << "\n";
     return kExitFailure;

@@ -36,6 +36,10 @@ class NodeColourCoder {
   // measures what it does to them.
   NodeColourCoder(NodeColourCoding coding, const std::vector<glm::vec3>& colours);
   NodeColourCoder() : NodeColourCoder(NodeColourCoding::Rgb9e5, {}) {}
+  // A coder as baked before (bake/baked_file.h): its constants; the caller restores the
+  // error figures.
+  NodeColourCoder(NodeColourCoding coding, const PowerFit& fit, bool fittedToSrgb, float scale)
+      : coding_(coding), fit_(fit), fittedToSrgb_(fittedToSrgb), scale_(scale) {}
 
   std::uint32_t encode(glm::vec3 colour) const;
   glm::vec3 decode(std::uint32_t word) const;

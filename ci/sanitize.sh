@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # CI: the scene tests and the corpus walk under AddressSanitizer + UndefinedBehaviorSanitizer,
 # then the libFuzzer targets for a bounded time: the glTF loader (FUZZ_SECONDS, seeded with
-# ../shared/scenes) and the light list reader (a third of that, seeded with small lists).
+# ../shared/scenes), the light list reader and the baked file reader (a third of that each,
+# seeded with small lists and small baked scenes).
 # Usage: ci/sanitize.sh [FUZZ_SECONDS]   (default 60)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,7 +11,7 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DMANYLIGHT_SANITIZE=ON -DMANYLIGHT_FUZZ=ON -DMANYLIGHT_BENCH=OFF
 cmake --build build-asan --target manylight_tests manylight_gltests manylight manylight_fuzz_gltf_loader \
-  manylight_fuzz_light_list manylight_imageio
+  manylight_fuzz_light_list manylight_fuzz_baked_file manylight_imageio
 # Slow unwinding gives full allocation stacks, which the third-party suppressions match.
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:fast_unwind_on_malloc=0
 export LSAN_OPTIONS="suppressions=$PWD/ci/lsan-suppressions.txt"
@@ -23,7 +24,8 @@ ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 build-asan/bin/manylight_gltests --
 # Fuzzing: seeds are the corpus's small files, copied to a scratch folder (never the repo).
 corpus="$(mktemp -d)"
 lists="$(mktemp -d)"
-trap 'rm -rf "$corpus" "$lists"' EXIT
+bakes="$(mktemp -d)"
+trap 'rm -rf "$corpus" "$lists" "$bakes"' EXIT
 if [ -d ../shared/scenes ]; then
   find ../shared/scenes -type f \( -name '*.gltf' -o -name '*.glb' \) -size -256k -exec cp -t "$corpus" {} + 2>/dev/null || true
 fi
@@ -39,3 +41,10 @@ printf '\001{"lights": [{"position": [1, 2, 3], "color": [255, 76, 216], "bright
 printf '\002GUID C2C1 - Position X=-300.000 Y=0.000 Z=150.000 W=1.000 - Radius 250 - Color (R=255,G=76,B=216,A=0) - Brightness = 5000\n' > "$lists/dump"
 build-asan/bin/manylight_fuzz_light_list -max_total_time="$(( seconds / 3 + 1 ))" -timeout=10 -rss_limit_mb=2048 \
   -detect_leaks=0 -artifact_prefix=build-asan/ "$lists"
+
+# Baked files: the seed is the sample's bake without its 32-byte header (the target writes one).
+ASAN_OPTIONS=detect_leaks=0 build-asan/bin/manylight bake scenes/sample.gltf -o "$bakes/a.mlbake" >/dev/null
+mkdir "$bakes/seeds"
+tail -c +33 "$bakes/a.mlbake" > "$bakes/seeds/a"
+build-asan/bin/manylight_fuzz_baked_file -max_total_time="$(( seconds / 3 + 1 ))" -timeout=10 -rss_limit_mb=2048 \
+  -detect_leaks=0 -artifact_prefix=build-asan/ "$bakes/seeds"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "render/output_file.h"
+#include "scene/output_file.h"
 #include "scene/image_io.h"
 
 namespace manylight {

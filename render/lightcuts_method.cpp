@@ -12,12 +12,15 @@ using namespace gl::api;
 
 LightcutsMethod::LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
                                  const TreeOptions& options, bool distance)
-    : distance_(distance), width_(gbuffer.width()), height_(gbuffer.height()) {
-  layout_ = packLightTrees(buildLightTrees(lights, options), options.nodeColour);
+    : LightcutsMethod(packLightTrees(buildLightTrees(lights, options), options.nodeColour), gbuffer, distance) {}
+
+LightcutsMethod::LightcutsMethod(PackedTrees packed, const GBuffer& gbuffer, bool distance)
+    : layout_(std::move(packed)), distance_(distance), width_(gbuffer.width()), height_(gbuffer.height()) {
   std::vector<std::uint32_t>& words = layout_.words;
+  const std::size_t nodeWords = words.size();
   if (words.empty()) words.assign(4, 0u);  // no lights: keep the sampler complete
   nodes_ = gl::uploadTextureBuffer(words.data(), words.size() / 4, GL_RGBA32UI,
-                                   "light trees of " + std::to_string(lights.size()) + " lights");
+                                   "light trees of " + std::to_string(nodeWords) + " words");
   words = {};
 
   glBindTexture(GL_TEXTURE_2D, statsTarget_.id());

@@ -22,7 +22,8 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   const std::vector<Light> rig = out.defaultRig ? defaultLightRig(camera) : std::vector<Light>{};
   const std::vector<Light>& lights = out.defaultRig ? rig : scene.lights;
   out.lightCount = lights.size();
-  Renderer renderer(scene, lights, request.width, request.height, request.method, request.lightcuts.trees);
+  Renderer renderer(scene, lights, request.width, request.height, request.method, request.lightcuts.trees,
+                    out.defaultRig ? nullptr : request.prebuiltTrees);
   FrameSettings settings;
   settings.ambient = request.ambient;
   settings.lightsPerPass = request.lightsPerPass;

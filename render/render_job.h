@@ -16,6 +16,8 @@ struct RenderRequest {
   glm::vec3 ambient{0.0f};
   int lightsPerPass = 0;  // 0: automatic
   LightcutsSettings lightcuts;
+  // Lightcuts trees packed before for the scene's own lights (a baked scene); null: build.
+  const PackedTrees* prebuiltTrees = nullptr;
 };
 
 struct RenderOutcome {

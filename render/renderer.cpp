@@ -29,7 +29,7 @@ const char* methodName(Method m) {
 }
 
 Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-                   Method method, const TreeOptions& trees)
+                   Method method, const TreeOptions& trees, const PackedTrees* prebuilt)
     : scene_(scene),
       gpu_(scene, lights),
       gbuffer_(width, height),
@@ -43,7 +43,9 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
   if (method != Method::Reference) {
     glFinish();
     const auto start = std::chrono::steady_clock::now();
-    lightcuts_ = std::make_unique<LightcutsMethod>(lights, gbuffer_, trees, method == Method::LightcutsDistance);
+    const bool distance = method == Method::LightcutsDistance;
+    lightcuts_ = prebuilt ? std::make_unique<LightcutsMethod>(*prebuilt, gbuffer_, distance)
+                          : std::make_unique<LightcutsMethod>(lights, gbuffer_, trees, distance);
     glFinish();
     bakeMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }

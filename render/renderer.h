@@ -35,10 +35,11 @@ struct FrameStats {
 
 class Renderer {
  public:
-  // Uploads the scene and compiles the programs; needs a current context. Throws
-  // gl::GlError.
+  // Uploads the scene and compiles the programs; needs a current context. A lightcuts
+  // method builds its trees from `lights` with `trees`, or uploads `prebuilt` (a baked
+  // scene's, packed for these lights) without building anything. Throws gl::GlError.
   Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-           Method method, const TreeOptions& trees = {});
+           Method method, const TreeOptions& trees = {}, const PackedTrees* prebuilt = nullptr);
   // Milliseconds spent building and uploading the light trees (lightcuts methods; else 0).
   double bakeMs() const { return bakeMs_; }
   // The lightcuts method, or null for the reference method.

@@ -295,6 +295,53 @@ TEST(Cli, BatchesRenderEverySceneInOneProcess) {
                            scenes[0] + " does; give scenes distinct names\n");
 }
 
+TEST(Cli, BakedScenesRenderAsTheirSources) {
+  RoomOptions o;
+  o.lightCount = 200;
+  const std::string scene = roomScene(o);
+  const fs::path dir = testFolder();
+  const std::string list = writeText("extra.csv", "x,y,z,r,g,b,brightness\n0,2,0,255,76,216,2\n1,2,1,10,200,30,2\n");
+  const std::string baked = (dir / "room.mlbake").string();
+  ProcessResult r = manylight("bake " + scene + " --lights " + list + " -o " + baked + " --stats " +
+                              (dir / "bake.json").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(readFile(dir / "bake.json"))["lights"], 202);
+  for (const char* method : {"reference", "lightcuts", "lightcuts-distance"}) {
+    SCOPED_TRACE(method);
+    const std::string args = std::string(" --size 64x48 --method ") + method;
+    const fs::path fromScene = dir / "scene.png", fromBake = dir / "bake.png";
+    ASSERT_EQ(manylight("render " + scene + " --lights " + list + " -o " + fromScene.string() + args).exitCode, 0);
+    r = manylight("render " + baked + " -o " + fromBake.string() + args + " --stats " + (dir / "s.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(readFile(fromBake), readFile(fromScene)) << "a baked scene renders bit for bit as its source";
+    const auto stats = nlohmann::json::parse(readFile(dir / "s.json"));
+    EXPECT_EQ(stats["lights"], 202);
+    if (std::string(method) != "reference") {
+      EXPECT_EQ(stats["baked_trees"], true);
+    }
+  }
+  r = manylight("render " + baked + " --lights " + list + " -o " + (dir / "x.png").string());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "manylight: " + baked + ": a baked scene's lights are baked in; bake it again with --lights\n");
+  r = manylight("render " + baked + " --tree-split longest-axis --method lightcuts -o " + (dir / "x.png").string());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "manylight: " + baked +
+                       ": baked with other --tree-split or --node-colour settings; bake it again to change them\n");
+  r = manylight("render " + baked + " --light-budget 100 -o " + (dir / "x.png").string());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "manylight: " + baked + ": 202 lights exceed the light budget of 100 (--light-budget)\n");
+  // A damaged bake: one line, nothing written.
+  std::string bytes = readFile(baked);
+  bytes[bytes.size() / 2] ^= 1;
+  const std::string damaged = writeText("damaged.mlbake", "");
+  std::ofstream(damaged, std::ios::binary) << bytes;
+  r = manylight("render " + damaged + " -o " + (dir / "y.png").string());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "manylight: " + damaged + ": checksum mismatch: the file is damaged\n");
+  EXPECT_FALSE(fs::exists(dir / "y.png"));
+  EXPECT_EQ(manylight("bake " + scene + " -o " + (dir / "room.bin").string()).exitCode, 2);
+}
+
 TEST(Cli, RerenderingIsBitIdenticalAndBackendsAgree) {
   RoomOptions o;
   o.lightCount = 32;

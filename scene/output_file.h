@@ -12,7 +12,7 @@ std::filesystem::path prepareTemporaryFor(const std::filesystem::path& target);
 // Renames `tmp` to `target`, or removes `tmp` and throws Error naming `target`.
 void commitTemporary(const std::filesystem::path& tmp, const std::filesystem::path& target);
 
-// Writes `text` to `path` through a temporary file. Throws Error.
-void writeTextFileAtomic(const std::string& path, const std::string& text);
+// Writes `bytes` (text or binary) to `path` through a temporary file. Throws Error.
+void writeFileAtomic(const std::string& path, const std::string& bytes);
 
 }  // namespace manylight

@@ -1,4 +1,4 @@
-#include "render/output_file.h"
+#include "scene/output_file.h"
 
 #include <unistd.h>
 
@@ -27,7 +27,7 @@ void commitTemporary(const fs::path& tmp, const fs::path& target) {
   }
 }
 
-void writeTextFileAtomic(const std::string& path, const std::string& text) {
+void writeFileAtomic(const std::string& path, const std::string& text) {
   const fs::path tmp = prepareTemporaryFor(path);
   {
     std::ofstream out(tmp, std::ios::binary);
