@@ -1,6 +1,11 @@
 // manylight: the command line. Parses arguments, calls the libraries, turns errors into a
 // one-line "manylight: FILE: problem" and a named exit code. No rendering logic lives here.
+#include <algorithm>
+#include <atomic>
+#include <cctype>
 #include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -11,6 +16,7 @@
 #include "gl/context.h"
 #include "render/colour_calibration.h"
 #include "scene/output_file.h"
+#include "render/playback.h"
 #include "render/progress.h"
 #include "render/render_job.h"
 #include "bake/baked_file.h"
@@ -282,6 +288,157 @@ int runBake(const BakeArgs& a, Clock::time_point processStart) {
   return kExitOk;
 }
 
+// A frame file name pattern: exactly one %d or %0Nd (and %% for a percent sign).
+bool frameName(const std::string& pattern, int frame, std::string* name) {
+  std::string out;
+  int conversions = 0;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] != '%') {
+      out += pattern[i];
+      continue;
+    }
+    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      out += '%';
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    const bool zero = j < pattern.size() && pattern[j] == '0';
+    if (zero) ++j;
+    int width = 0;
+    while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j])) && width < 100) {
+      width = width * 10 + (pattern[j++] - '0');
+    }
+    if (j >= pattern.size() || pattern[j] != 'd' || width > 12) return false;
+    std::string digits = std::to_string(frame);
+    if (int(digits.size()) < width) digits.insert(0, std::size_t(width) - digits.size(), zero ? '0' : ' ');
+    out += digits;
+    ++conversions;
+    i = j;
+  }
+  if (name) *name = out;
+  return conversions == 1;
+}
+
+std::atomic<bool> gInterrupted{false};
+extern "C" void onInterrupt(int) { gInterrupted = true; }
+
+struct PlayArgs {
+  std::string scene, output, size = "640x360", method = "lightcuts", backend = "auto", statsPath;
+  std::string errorMode = "node";
+  float error = 0.02f;
+  int maxCut = LightcutsSettings{}.maxCut;
+  int camera = -1, frames = 120;
+  float orbit = 360.0f, exposure = 0.0f;
+  SceneArgs input;
+  bool verbose = false;
+};
+
+int runPlay(const PlayArgs& a, Clock::time_point processStart) {
+  PlaybackRequest request;
+  RenderRequest& r = request.frame;
+  char tail = 0;
+  if (std::sscanf(a.size.c_str(), "%dx%d%c", &r.width, &r.height, &tail) != 2 || r.width < 1 || r.height < 1 ||
+      r.width > 16384 || r.height > 16384) {
+    std::cerr << "manylight: --size: expected WxH within 1..16384, got '" << a.size << "'\n";
+    return kExitUsage;
+  }
+  const bool toStdout = a.output == "-";
+  if (!toStdout) {
+    std::string first;
+    if (!frameName(a.output, 0, &first)) {
+      std::cerr << "manylight: -o: expected a file name pattern with one %d or %0Nd (e.g. frames/%04d.png), or - "
+                   "for raw RGBA8 frames on stdout, got '"
+                << a.output << "'\n";
+      return kExitUsage;
+    }
+    checkOutputPath(first);
+  }
+  r.camera = a.camera;
+  r.method = parseMethod(a.method);
+  r.lightcuts.error = a.error;
+  r.lightcuts.maxCut = a.maxCut;
+  r.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
+  r.lightcuts.trees = a.input.trees();
+  request.frames = a.frames;
+  request.orbitDegrees = a.orbit;
+  const gl::Backend backend = gl::parseBackend(a.backend);
+
+  const auto loadStart = Clock::now();
+  const BakedScene baked = loadAnyScene(a.scene, a.input);
+  const double loadMs = msSince(loadStart);
+  for (const std::string& w : baked.scene.warnings) std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";
+  if (baked.hasTrees) r.prebuiltTrees = &baked.packed;
+  const std::unique_ptr<gl::Context> context = openContext(backend, a.verbose);
+  if (!context) return kExitNoContext;
+
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
+  std::signal(SIGPIPE, SIG_IGN);  // a closed pipe shows as a failed write, and stops the playback
+  bool outputClosed = false;
+  std::vector<std::uint8_t> codes;
+  Progress progress(a.frames);
+  const auto playStart = Clock::now();
+  const PlaybackOutcome out = play(
+      baked.scene, request,
+      [&](int frame, const Image& image, const FrameStats&) {
+        if (toStdout) {
+          codes.resize(image.rgba.size());
+          const double scale = std::exp2(double(a.exposure));
+          for (std::size_t i = 0; i < codes.size(); ++i) {
+            codes[i] = i % 4 == 3 ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
+                                  : encodeSrgb8(image.rgba[i] * scale);
+          }
+          if (std::fwrite(codes.data(), 1, codes.size(), stdout) != codes.size() || std::fflush(stdout) != 0) {
+            outputClosed = true;
+            return false;
+          }
+        } else {
+          std::string name;
+          frameName(a.output, frame, &name);
+          writeImage(image, name, a.exposure);
+        }
+        progress.step("frame " + std::to_string(frame));
+        return true;
+      },
+      &gInterrupted);
+  progress.clear();
+  const double wallMs = msSince(playStart);
+  double renderSum = 0.0;
+  for (double ms : out.renderMs) renderSum += ms;
+  if (!a.statsPath.empty()) {
+    nlohmann::json stats = {{"scene", a.scene},
+                            {"output", a.output},
+                            {"method", methodName(r.method)},
+                            {"backend", context->backend()},
+                            {"renderer", context->renderer()},
+                            {"width", r.width},
+                            {"height", r.height},
+                            {"lights", out.lightCount},
+                            {"baked_trees", baked.hasTrees},
+                            {"frames", out.framesRendered},
+                            {"load_ms", loadMs},
+                            {"bake_ms", out.bakeMs},
+                            {"frame_render_ms", out.renderMs},
+                            {"render_fps", renderSum > 0.0 ? 1000.0 * out.framesRendered / renderSum : 0.0},
+                            {"wall_fps", wallMs > 0.0 ? 1000.0 * out.framesRendered / wallMs : 0.0},
+                            {"interrupted", gInterrupted.load()},
+                            {"output_closed", outputClosed},
+                            {"total_ms", msSince(processStart)}};
+    writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
+  }
+  if (gInterrupted) {
+    std::cerr << "manylight: interrupted after " << out.framesRendered << " frames\n";
+    return 130;
+  }
+  if (outputClosed) std::cerr << "manylight: output closed after " << out.framesRendered - 1 << " frames\n";
+  if (a.verbose) {
+    std::cerr << "manylight: " << out.framesRendered << " frames, " << (renderSum > 0 ? 1000.0 * out.framesRendered / renderSum : 0)
+              << " fps rendering, " << 1000.0 * out.framesRendered / std::max(wallMs, 1e-9) << " fps overall\n";
+  }
+  return kExitOk;
+}
+
 struct RenderArgs {
   std::vector<std::string> scenes;
   std::string output, outDir, format = "png", shard, size = "640x480", method = "reference", backend = "auto";
@@ -484,6 +641,36 @@ int main(int argc, char** argv) {
   addSceneOptions(render, r.input);
   render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
   render->add_flag("-v,--verbose", r.verbose, "Say which context was chosen and how long things took");
+  PlayArgs p;
+  CLI::App* playCmd = app.add_subcommand(
+      "play", "Play a scene or baked scene: a turntable orbit of its camera, one context, only the camera changing");
+  playCmd->add_option("scene", p.scene, "glTF 2.0 scene or baked scene (.mlbake)")->required();
+  playCmd->add_option("-o,--output", p.output,
+                      "Frames: a pattern with one %d or %0Nd (frames/%04d.png, .exr), or - for raw RGBA8 frames "
+                      "(sRGB, rows top-down, W*H*4 bytes each) on stdout")
+      ->required();
+  playCmd->add_option("--frames", p.frames, "Frames to play")->capture_default_str()->check(CLI::Range(1, 1000000));
+  playCmd->add_option("--orbit", p.orbit, "Degrees the camera turns about the scene's vertical axis over all frames")
+      ->capture_default_str();
+  playCmd->add_option("--size", p.size, "Frame size WxH")->capture_default_str();
+  playCmd->add_option("--camera", p.camera, "Index of the glTF camera the orbit starts from (default: the first; "
+                                            "with none, the thumbnail framing)");
+  playCmd->add_option("--method", p.method, "reference, lightcuts or lightcuts-distance")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
+  playCmd->add_option("--error", p.error, "lightcuts: relative error ε")->capture_default_str()->check(
+      CLI::Range(1e-6f, 1.0f));
+  playCmd->add_option("--error-mode", p.errorMode, "lightcuts: node or total")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"node", "total"}));
+  playCmd->add_option("--max-cut", p.maxCut, "lightcuts: most nodes in a pixel's cut")
+      ->capture_default_str()
+      ->check(CLI::Range(1, kMaxCutLimit));
+  playCmd->add_option("--exposure", p.exposure, "Exposure in EV")->capture_default_str();
+  playCmd->add_option("--backend", p.backend, "Context: auto, egl, osmesa")->capture_default_str();
+  addSceneOptions(playCmd, p.input);
+  playCmd->add_option("--stats", p.statsPath, "Write per-frame times and facts about the playback as JSON");
+  playCmd->add_flag("-v,--verbose", p.verbose, "Say which context was chosen and the frame rate");
   BakeArgs b;
   CLI::App* bake = app.add_subcommand(
       "bake", "Bake a glTF scene (and a light list) into one file that render loads without rebuilding anything");
@@ -527,6 +714,7 @@ int main(int argc, char** argv) {
     if (*render) return runRender(r, processStart);
     if (*fit) return runFitGamma(f);
     if (*bake) return runBake(b, processStart);
+    if (*playCmd) return runPlay(p, processStart);
     if (*compare) return runCompare(c);
   } catch (const CLI::ParseError& e) {
     std::cerr << "manylight: " << e.what() << "\n";
@@ -538,6 +726,7 @@ int main(int argc, char** argv) {
     const std::string& subject = *fit       ? (f.pairs.empty() ? f.calibrate : f.pairs)
                                  : *compare ? c.a
                                  : *bake    ? b.scene
+                                 : *playCmd ? p.scene
                                  : r.scenes.empty() ? std::string("render") : r.scenes[0];
     std::cerr << "manylight: " << subject << ": " << e.what() << "\n";
     return kExitFailure;

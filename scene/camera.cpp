@@ -48,6 +48,15 @@ Camera frameBounds(const Bounds& bounds, int width, int height) {
   return c;
 }
 
+Camera orbitCamera(const Camera& camera, glm::vec3 centre, float radians) {
+  Camera c = camera;
+  const glm::mat4 turn = glm::translate(glm::mat4(1.0f), centre) *
+                         glm::rotate(glm::mat4(1.0f), radians, glm::vec3(0.0f, 1.0f, 0.0f)) *
+                         glm::translate(glm::mat4(1.0f), -centre);
+  c.world = turn * camera.world;
+  return c;
+}
+
 std::vector<Light> defaultLightRig(const Camera& camera) {
   struct Rig {
     glm::vec3 towardsLight;  // camera space: +X right, +Y up, +Z towards the viewer

@@ -24,6 +24,10 @@ View makeView(const Camera& camera, int width, int height);
 // fits the narrower field of view with 5% margin.
 Camera frameBounds(const Bounds& bounds, int width, int height);
 
+// `camera` turned by `radians` about the vertical (+Y) axis through `centre`: one step of a
+// turntable orbit (positive turns counter-clockwise seen from above).
+Camera orbitCamera(const Camera& camera, glm::vec3 centre, float radians);
+
 // The light rig used when a scene has no lights: three directional lights fixed to the
 // camera (key 3 lux from upper left, fill 1 lux from the right, rim 1.5 lux from behind),
 // white, so a Lambert surface facing the key reads as light grey.

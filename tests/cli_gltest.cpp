@@ -342,6 +342,64 @@ TEST(Cli, BakedScenesRenderAsTheirSources) {
   EXPECT_EQ(manylight("bake " + scene + " -o " + (dir / "room.bin").string()).exitCode, 2);
 }
 
+int shell(const std::string& command) {
+  const int status = std::system(("bash -c '" + command + "'").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
+  const fs::path dir = testFolder();
+  const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
+  const std::string frames = (dir / "frames" / "f%03d.png").string();
+  ProcessResult r = manylight("play " + scene + " -o " + frames + " --frames 4 --size 48x32 --stats " +
+                              (dir / "play.json").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto stats = nlohmann::json::parse(readFile(dir / "play.json"));
+  EXPECT_EQ(stats["frames"], 4);
+  EXPECT_EQ(stats["frame_render_ms"].size(), 4u);
+  EXPECT_GT(stats["render_fps"].get<double>(), 0.0);
+  // Frame 0 is the still render of the same camera, bit for bit; later frames have turned.
+  const fs::path still = dir / "still.png";
+  ASSERT_EQ(manylight("render " + scene + " -o " + still.string() + " --size 48x32 --method lightcuts").exitCode, 0);
+  EXPECT_EQ(readFile(dir / "frames" / "f000.png"), readFile(still));
+  EXPECT_NE(readFile(dir / "frames" / "f002.png"), readFile(still));
+  EXPECT_TRUE(fs::exists(dir / "frames" / "f003.png"));
+  EXPECT_FALSE(fs::exists(dir / "frames" / "f004.png"));
+
+  // Raw frames on stdout: 4 × 48 × 32 RGBA8, the first equal to the PNG's codes.
+  const fs::path raw = dir / "frames.rgba";
+  ASSERT_EQ(shell(std::string(MANYLIGHT_BIN) + " play " + scene + " -o - --frames 4 --size 48x32 > " + raw.string()), 0);
+  const std::string bytes = readFile(raw);
+  ASSERT_EQ(bytes.size(), 4u * 48 * 32 * 4);
+  const Image first = readImage(still.string());
+  int off = 0;
+  for (std::size_t i = 0; i < 48 * 32 * 4; ++i) {
+    off += std::uint8_t(bytes[i]) != int(std::lround(first.rgba[i] * 255.0f));
+  }
+  EXPECT_EQ(off, 0);
+
+  // A consumer that stops reading ends the playback cleanly, without hanging.
+  EXPECT_EQ(shell(std::string(MANYLIGHT_BIN) + " play " + scene +
+                  " -o - --frames 100000 --size 48x32 2>/dev/null | head -c 100 > /dev/null; exit ${PIPESTATUS[0]}"),
+            0);
+  // So does Ctrl-C: every frame written is whole, and no temporary file is left.
+  const fs::path stopped = dir / "stopped";
+  EXPECT_EQ(shell("timeout --preserve-status -s INT 3 " + std::string(MANYLIGHT_BIN) + " play " + scene + " -o " +
+                  (stopped / "%04d.png").string() + " --frames 100000 --size 48x32 2>/dev/null"),
+            130);
+  int written = 0;
+  for (const auto& e : fs::directory_iterator(stopped)) {
+    ++written;
+    EXPECT_EQ(e.path().extension(), ".png") << e.path();
+    EXPECT_EQ(e.path().filename().string().front() == '.', false) << "temporary file left: " << e.path();
+    EXPECT_EQ(readImage(e.path().string()).width, 48);
+  }
+  EXPECT_GT(written, 0);
+
+  r = manylight("play " + scene + " -o " + (dir / "nopattern.png").string());
+  EXPECT_EQ(r.exitCode, 2);
+}
+
 TEST(Cli, RerenderingIsBitIdenticalAndBackendsAgree) {
   RoomOptions o;
   o.lightCount = 32;

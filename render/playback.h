@@ -1,0 +1,37 @@
+#pragma once
+// Kiosk playback (`manylight play`): one renderer for the whole run — the scene, its lights
+// and light trees uploaded once — and only the camera changing from frame to frame: a
+// turntable orbit of the chosen camera (or of the thumbnail framing) about the vertical axis
+// through the centre of the scene's bounds.
+#include <atomic>
+#include <functional>
+
+#include "render/render_job.h"
+
+namespace manylight {
+
+struct PlaybackRequest {
+  RenderRequest frame;      // size, camera, method, lights, prebuilt trees
+  int frames = 120;
+  float orbitDegrees = 360.0f;  // swept over all frames (frame i at i/frames of it)
+};
+
+struct PlaybackOutcome {
+  int framesRendered = 0;
+  bool framed = false;      // no camera: the orbit starts from the thumbnail framing
+  bool defaultRig = false;  // no lights: the default rig, fixed to the first frame's camera
+  std::size_t lightCount = 0;
+  double bakeMs = 0.0;
+  std::vector<double> renderMs;  // per frame
+  CutStats firstFrameCuts;
+};
+
+// Called with each frame in order; returning false stops the playback (a closed output).
+using FrameSink = std::function<bool(int frame, const Image& image, const FrameStats& stats)>;
+
+// Plays `scene`; stops early when `stop` becomes true (checked between frames). Needs a
+// current context. Throws Error or gl::GlError.
+PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const FrameSink& sink,
+                     const std::atomic<bool>* stop = nullptr);
+
+}  // namespace manylight
