@@ -328,8 +328,8 @@ struct PlayArgs {
   std::string errorMode = "node";
   float error = 0.02f;
   int maxCut = LightcutsSettings{}.maxCut;
-  int camera = -1, frames = 120;
-  float orbit = 360.0f, exposure = 0.0f;
+  int camera = -1, frames = 0;
+  float orbit = 360.0f, exposure = 0.0f, fps = 30.0f;
   SceneArgs input;
   bool verbose = false;
 };
@@ -361,6 +361,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   r.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
   r.lightcuts.trees = a.input.trees();
   request.frames = a.frames;
+  request.fps = a.fps;
   request.orbitDegrees = a.orbit;
   const gl::Backend backend = gl::parseBackend(a.backend);
 
@@ -377,7 +378,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   std::signal(SIGPIPE, SIG_IGN);  // a closed pipe shows as a failed write, and stops the playback
   bool outputClosed = false;
   std::vector<std::uint8_t> codes;
-  Progress progress(a.frames);
+  Progress progress(a.frames > 0 ? a.frames : 0);
   const auto playStart = Clock::now();
   const PlaybackOutcome out = play(
       baked.scene, request,
@@ -417,6 +418,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
                             {"lights", out.lightCount},
                             {"baked_trees", baked.hasTrees},
                             {"frames", out.framesRendered},
+                            {"camera_animation", out.animated},
                             {"load_ms", loadMs},
                             {"bake_ms", out.bakeMs},
                             {"frame_render_ms", out.renderMs},
@@ -643,14 +645,22 @@ int main(int argc, char** argv) {
   render->add_flag("-v,--verbose", r.verbose, "Say which context was chosen and how long things took");
   PlayArgs p;
   CLI::App* playCmd = app.add_subcommand(
-      "play", "Play a scene or baked scene: a turntable orbit of its camera, one context, only the camera changing");
+      "play", "Play a scene or baked scene: its camera animation, or a turntable orbit; one context, only the "
+              "camera changing");
   playCmd->add_option("scene", p.scene, "glTF 2.0 scene or baked scene (.mlbake)")->required();
   playCmd->add_option("-o,--output", p.output,
                       "Frames: a pattern with one %d or %0Nd (frames/%04d.png, .exr), or - for raw RGBA8 frames "
                       "(sRGB, rows top-down, W*H*4 bytes each) on stdout")
       ->required();
-  playCmd->add_option("--frames", p.frames, "Frames to play")->capture_default_str()->check(CLI::Range(1, 1000000));
-  playCmd->add_option("--orbit", p.orbit, "Degrees the camera turns about the scene's vertical axis over all frames")
+  playCmd->add_option("--frames", p.frames,
+                      "Frames to play (default: the camera animation to its last key at --fps, or 120 for an orbit)")
+      ->check(CLI::Range(1, 1000000));
+  playCmd->add_option("--fps", p.fps, "Frames per second of animation time")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001f, 10000.0f));
+  playCmd->add_option("--orbit", p.orbit,
+                      "Without a camera animation: degrees the camera turns about the scene's vertical axis over "
+                      "all frames")
       ->capture_default_str();
   playCmd->add_option("--size", p.size, "Frame size WxH")->capture_default_str();
   playCmd->add_option("--camera", p.camera, "Index of the glTF camera the orbit starts from (default: the first; "

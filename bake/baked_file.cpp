@@ -14,6 +14,7 @@
 #include <type_traits>
 
 #include "bake/light_tree_layout.h"
+#include "scene/camera_animation.h"
 #include "scene/output_file.h"
 
 namespace manylight {
@@ -202,6 +203,17 @@ std::string section(std::uint32_t which, const BakedScene& b) {
       w.put(std::uint8_t(c.orthographic));
       w.put(c.yfov), w.put(c.xmag), w.put(c.ymag), w.put(c.znear), w.put(c.zfar);
       putFloats(w, c.world);
+      w.put(c.animation.duration);
+      w.put(std::uint32_t(c.animation.chain.size()));
+      for (const AnimatedNode& n : c.animation.chain) {
+        w.put(std::uint8_t(n.hasMatrix));
+        putFloats(w, n.matrix), putFloats(w, n.translation), putFloats(w, n.rotation), putFloats(w, n.scale);
+        w.put(std::uint32_t(n.tracks.size()));
+        for (const AnimationTrack& t : n.tracks) {
+          w.put(std::uint8_t(t.path)), w.put(std::uint8_t(t.interpolation));
+          w.array(t.times), w.array(t.values);
+        }
+      }
     }
   } else if (which == kTrees) {
     writeTrees(w, b);
@@ -328,6 +340,27 @@ void readCameras(Reader& r, Scene& s) {
     c.znear = getFinite<float>(r, "znear");
     c.zfar = getFinite<float>(r, "zfar");
     c.world = getFinite<glm::mat4>(r, "a camera transform");
+    c.animation.duration = getFinite<float>(r, "an animation duration");
+    c.animation.chain.resize(r.count(1024, "animated nodes"));
+    for (AnimatedNode& n : c.animation.chain) {
+      n.hasMatrix = r.get<std::uint8_t>() != 0;
+      n.matrix = getFinite<glm::mat4>(r, "a node matrix");
+      n.translation = getFinite<glm::vec3>(r, "a node translation");
+      n.rotation = getFinite<glm::vec4>(r, "a node rotation");
+      n.scale = getFinite<glm::vec3>(r, "a node scale");
+      n.tracks.resize(r.count(16, "animation tracks"));
+      for (AnimationTrack& t : n.tracks) {
+        const auto path = r.get<std::uint8_t>(), interpolation = r.get<std::uint8_t>();
+        if (path > 2 || interpolation > 2) r.fail("unknown animation path or interpolation");
+        t.path = AnimationTrack::Path(path);
+        t.interpolation = AnimationTrack::Interpolation(interpolation);
+        t.times = r.array<float>();
+        t.values = r.array<float>();
+        const std::string problem = checkTrack(t);
+        if (!problem.empty()) r.fail("animation track: " + problem);
+        if (t.times.back() > c.animation.duration) r.fail("animation track: keys past the duration");
+      }
+    }
   }
 }
 

@@ -1,6 +1,10 @@
 #include "render/playback.h"
 
+#include <cmath>
+
 #include <glm/gtc/constants.hpp>
+
+#include "scene/camera_animation.h"
 
 namespace manylight {
 
@@ -23,9 +27,18 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
   const Bounds bounds = scene.bounds();
   const glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : 0.5f * (bounds.min + bounds.max);
   const float sweep = glm::radians(request.orbitDegrees);
-  for (int i = 0; i < request.frames; ++i) {
+  out.animated = !start.animation.chain.empty();
+  const int frames = request.frames > 0 ? request.frames
+                     : out.animated     ? int(std::floor(start.animation.duration * request.fps + 1e-3f)) + 1
+                                        : 120;
+  for (int i = 0; i < frames; ++i) {
     if (stop && stop->load()) break;
-    const Camera camera = orbitCamera(start, centre, sweep * float(i) / float(request.frames));
+    Camera camera = start;
+    if (out.animated) {
+      camera.world = animatedCameraWorld(start, float(i) / request.fps);
+    } else {
+      camera = orbitCamera(start, centre, sweep * float(i) / float(frames));
+    }
     FrameStats stats;
     const Image image = renderer.render(makeView(camera, r.width, r.height), settings, &stats);
     out.renderMs.push_back(stats.renderMs);

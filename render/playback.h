@@ -1,7 +1,8 @@
 #pragma once
 // Kiosk playback (`manylight play`): one renderer for the whole run — the scene, its lights
-// and light trees uploaded once — and only the camera changing from frame to frame: a
-// turntable orbit of the chosen camera (or of the thumbnail framing) about the vertical axis
+// and light trees uploaded once — and only the camera changing from frame to frame: the
+// chosen camera's glTF animation when it has one (frame i at i/fps seconds), otherwise a
+// turntable orbit of the camera (or of the thumbnail framing) about the vertical axis
 // through the centre of the scene's bounds.
 #include <atomic>
 #include <functional>
@@ -12,13 +13,15 @@ namespace manylight {
 
 struct PlaybackRequest {
   RenderRequest frame;      // size, camera, method, lights, prebuilt trees
-  int frames = 120;
+  int frames = 0;  // 0: the animation's length at `fps` (to its last key), or 120 for an orbit
+  float fps = 30.0f;
   float orbitDegrees = 360.0f;  // swept over all frames (frame i at i/frames of it)
 };
 
 struct PlaybackOutcome {
   int framesRendered = 0;
   bool framed = false;      // no camera: the orbit starts from the thumbnail framing
+  bool animated = false;    // the camera's animation was played (no orbit)
   bool defaultRig = false;  // no lights: the default rig, fixed to the first frame's camera
   std::size_t lightCount = 0;
   double bakeMs = 0.0;

@@ -17,7 +17,11 @@ void Progress::step(const std::string& what) {
   bar.resize(kWidth, '.');
   // Only the end of a long name fits the line.
   const std::string name = what.size() > 40 ? "..." + what.substr(what.size() - 37) : what;
-  std::fprintf(stderr, "\r\033[K[%s] %d/%d %s", bar.c_str(), done_, total_, name.c_str());
+  if (total_ > 0) {
+    std::fprintf(stderr, "\r\033[K[%s] %d/%d %s", bar.c_str(), done_, total_, name.c_str());
+  } else {  // an unknown total: a count
+    std::fprintf(stderr, "\r\033[K%d %s", done_, name.c_str());
+  }
   std::fflush(stderr);
   drawn_ = true;
 }

@@ -7,7 +7,7 @@ namespace manylight {
 
 class Progress {
  public:
-  explicit Progress(int total);
+  explicit Progress(int total);  // total 0: not known, counted only
   ~Progress() { clear(); }
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;

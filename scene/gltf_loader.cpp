@@ -1,5 +1,6 @@
 #include "scene/gltf_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -12,7 +13,9 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "scene/asset_files.h"
+#include "scene/camera_animation.h"
 #include "scene/error.h"
+#include "scene/gltf_accessors.h"
 #include "scene/gltf_convert.h"
 #include "scene/image_decode.h"
 
@@ -148,6 +151,12 @@ class SceneWalker {
         if (!isChild[i]) roots.push_back(int(i));
       }
     }
+    parent_.assign(model_.nodes.size(), -1);
+    for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
+      for (int c : model_.nodes[n].children) {
+        if (c >= 0 && std::size_t(c) < parent_.size()) parent_[c] = int(n);
+      }
+    }
     cameraPlaced_.assign(model_.cameras.size(), false);
     scene_.cameras.assign(model_.cameras.size(), Camera{});
     for (std::size_t i = 0; i < model_.cameras.size(); ++i) {
@@ -212,6 +221,7 @@ class SceneWalker {
       if (!cameraPlaced_[node.camera]) {
         cameraPlaced_[node.camera] = true;
         scene_.cameras[node.camera].world = gltf::withoutScale(world);
+        scene_.cameras[node.camera].animation = cameraAnimation(index);
       }
     }
     const int light = nodeLight(node);
@@ -223,11 +233,75 @@ class SceneWalker {
     }
   }
 
+  // The first animation that moves node `index` or an ancestor: the chain from the root
+  // down to the node, with that animation's tracks on each.
+  CameraAnimation cameraAnimation(int index) const {
+    std::vector<int> chain;
+    for (int n = index; n >= 0 && chain.size() <= model_.nodes.size(); n = parent_[n]) chain.push_back(n);
+    std::reverse(chain.begin(), chain.end());
+    for (std::size_t a = 0; a < model_.animations.size(); ++a) {
+      const tinygltf::Animation& anim = model_.animations[a];
+      CameraAnimation out;
+      bool moves = false;
+      for (int n : chain) {
+        const tinygltf::Node& node = model_.nodes[n];
+        AnimatedNode an;
+        an.hasMatrix = node.matrix.size() == 16;
+        an.matrix = localTransform(node);
+        if (node.translation.size() == 3) an.translation = glm::vec3(glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+        if (node.rotation.size() == 4) {
+          an.rotation = glm::vec4(glm::dvec4(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]));
+        }
+        if (node.scale.size() == 3) an.scale = glm::vec3(glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+        for (std::size_t c = 0; c < anim.channels.size(); ++c) {
+          const tinygltf::AnimationChannel& ch = anim.channels[c];
+          if (ch.target_node != n) continue;
+          const std::string where = "animation " + std::to_string(a) + ": channel " + std::to_string(c);
+          AnimationTrack t;
+          if (ch.target_path == "translation") {
+            t.path = AnimationTrack::Translation;
+          } else if (ch.target_path == "rotation") {
+            t.path = AnimationTrack::Rotation;
+          } else if (ch.target_path == "scale") {
+            t.path = AnimationTrack::Scale;
+          } else {
+            continue;  // morph target weights do not move a camera
+          }
+          if (an.hasMatrix) throw SceneError(where + ": node " + std::to_string(n) + " has a matrix and cannot be animated");
+          if (ch.sampler < 0 || std::size_t(ch.sampler) >= anim.samplers.size()) {
+            throw SceneError(where + ": sampler " + std::to_string(ch.sampler) + " does not exist");
+          }
+          const tinygltf::AnimationSampler& sampler = anim.samplers[ch.sampler];
+          if (sampler.interpolation == "STEP") {
+            t.interpolation = AnimationTrack::Step;
+          } else if (sampler.interpolation == "CUBICSPLINE") {
+            t.interpolation = AnimationTrack::CubicSpline;
+          } else if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") {
+            t.interpolation = AnimationTrack::Linear;
+          } else {
+            throw SceneError(where + ": unknown interpolation '" + sampler.interpolation + "'");
+          }
+          t.times = gltf::readFloats(model_, sampler.input, 1, where + " input");
+          t.values = gltf::readFloats(model_, sampler.output, t.path == AnimationTrack::Rotation ? 4 : 3, where + " output");
+          const std::string problem = checkTrack(t);
+          if (!problem.empty()) throw SceneError(where + ": " + problem);
+          out.duration = std::max(out.duration, t.times.back());
+          an.tracks.push_back(std::move(t));
+          moves = true;
+        }
+        out.chain.push_back(std::move(an));
+      }
+      if (moves) return out;
+    }
+    return {};
+  }
+
   const tinygltf::Model& model_;
   Scene& scene_;
   gltf::Converter& convert_;
   const LoadOptions& options_;
   std::vector<bool> cameraPlaced_;
+  std::vector<int> parent_;
   std::size_t lightsSeen_ = 0;
 };
 

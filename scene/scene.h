@@ -69,6 +69,28 @@ struct MeshInstance {
   glm::mat4 world{1.0f};
 };
 
+// A glTF animation of a camera's node and its ancestors (scene/camera_animation.h evaluates
+// it): the chain from the root to the camera's node, each node's rest transform and the
+// tracks that move it.
+struct AnimationTrack {
+  enum Path : std::uint8_t { Translation, Rotation, Scale } path = Translation;
+  enum Interpolation : std::uint8_t { Linear, Step, CubicSpline } interpolation = Linear;
+  std::vector<float> times;   // seconds, increasing
+  std::vector<float> values;  // 3 (4 for rotation, xyzw) floats per key; ×3 for cubic spline
+};
+struct AnimatedNode {
+  glm::mat4 matrix{1.0f};  // used when the node gives a matrix (such nodes are not animated)
+  bool hasMatrix = false;
+  glm::vec3 translation{0.0f};
+  glm::vec4 rotation{0.0f, 0.0f, 0.0f, 1.0f};  // quaternion xyzw
+  glm::vec3 scale{1.0f};
+  std::vector<AnimationTrack> tracks;
+};
+struct CameraAnimation {
+  std::vector<AnimatedNode> chain;  // root first, the camera's node last; empty: not animated
+  float duration = 0.0f;            // seconds: the last key time of any track
+};
+
 struct Camera {
   bool orthographic = false;
   float yfov = 0.785398163397448f;  // radians, perspective
@@ -76,6 +98,7 @@ struct Camera {
   float znear = 0.01f;
   float zfar = 0.0f;  // 0: infinite (perspective only)
   glm::mat4 world{1.0f};  // camera-to-world, unit scale; looks down −Z, +Y up
+  CameraAnimation animation;  // the first glTF animation that moves it, if any
 };
 
 struct Bounds {

@@ -400,6 +400,20 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
   EXPECT_EQ(r.exitCode, 2);
 }
 
+TEST(Cli, PlaybackFollowsTheCameraAnimation) {
+  // Keys at 0, 1 and 2 s; at 2 frames per second that is frames 0..4, the last on the last key.
+  const std::string scene = animatedScene("animated");
+  const fs::path dir = testFolder();
+  const ProcessResult r = manylight("play " + scene + " -o " + (dir / "a%d.png").string() +
+                                    " --fps 2 --size 32x24 --method reference --stats " + (dir / "p.json").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto stats = nlohmann::json::parse(readFile(dir / "p.json"));
+  EXPECT_EQ(stats["frames"], 5);
+  EXPECT_EQ(stats["camera_animation"], true);
+  EXPECT_TRUE(fs::exists(dir / "a4.png"));
+  EXPECT_FALSE(fs::exists(dir / "a5.png"));
+}
+
 TEST(Cli, RerenderingIsBitIdenticalAndBackendsAgree) {
   RoomOptions o;
   o.lightCount = 32;

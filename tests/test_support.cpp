@@ -1,5 +1,7 @@
 #include "tests/test_support.h"
 
+#include <fstream>
+
 #include <algorithm>
 
 #include <unistd.h>
@@ -71,6 +73,37 @@ std::string corpusName(const std::filesystem::path& file) {
   const std::filesystem::path relative = file.lexically_relative(shared);
   if (!relative.empty() && *relative.begin() != "..") return relative.string();
   return "scenes/" + file.filename().string();
+}
+
+// A camera on node 1, child of node 0 (translated by (1, 0, 0)); animation 0 moves node 1
+// from z = 5 to 10 to 15 at t = 0, 1, 2 (LINEAR), and turns it 90° about +Y at t = 1 (STEP).
+std::string animatedScene(const std::string& name, const char* interpolation, float secondTime) {
+  const float data[] = {0.0f, secondTime, 2.0f,                         // times
+                        0, 0, 5, 0, 0, 10, 0, 0, 15,                    // translations
+                        0, 0, 0, 1, 0, 0.70710678f, 0, 0.70710678f,     // rotations at t = 0, 1
+                        0, 0.70710678f, 0, 0.70710678f};                // and 2
+  const std::string bin = (testFolder() / (name + ".bin")).string();
+  std::ofstream(bin, std::ios::binary).write(reinterpret_cast<const char*>(data), sizeof data);
+  const std::string gltf = R"({
+    "asset": {"version": "2.0"},
+    "buffers": [{"uri": ")" + name + R"(.bin", "byteLength": )" + std::to_string(sizeof data) + R"(}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 12},
+                    {"buffer": 0, "byteOffset": 12, "byteLength": 36},
+                    {"buffer": 0, "byteOffset": 48, "byteLength": 48}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "SCALAR", "min": [0], "max": [2]},
+                  {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+                  {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC4"}],
+    "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
+    "nodes": [{"translation": [1, 0, 0], "children": [1]}, {"camera": 0}],
+    "scenes": [{"nodes": [0]}],
+    "animations": [{"channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}},
+                                 {"sampler": 1, "target": {"node": 1, "path": "rotation"}}],
+                    "samplers": [{"input": 0, "output": 1, "interpolation": ")" + interpolation + R"("},
+                                 {"input": 0, "output": 2, "interpolation": "STEP"}]}]
+  })";
+  const std::string path = (testFolder() / (name + ".gltf")).string();
+  std::ofstream(path) << gltf;
+  return path;
 }
 
 }  // namespace manylight::testing
