@@ -66,7 +66,7 @@ class Writer {
   template <typename T>
   void array(const std::vector<T>& v) {  // count, then the elements
     put(std::uint64_t(v.size()));
-    out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
   void string(const std::string& s) {
     put(std::uint64_t(s.size()));
@@ -97,7 +97,7 @@ class Reader {
     const std::uint64_t n = get<std::uint64_t>();
     if (n > (bytes_.size() - at_) / sizeof(T)) fail("an array of " + std::to_string(n) + " runs past the section");
     std::vector<T> v(n);
-    std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));
+    if (n > 0) std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));  // memcpy from/to null is UB
     at_ += n * sizeof(T);
     return v;
   }
