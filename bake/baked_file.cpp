@@ -547,35 +547,23 @@ BakedScene readBakedScene(const std::string& path, std::uint64_t maxBytes) {
     return Reader(it->second, path + ": " + name);
   };
   BakedScene b;
-  Reader scene = open(kScene, "scene");
-  readScene(scene, b);
-  scene.end();
-  Reader textures = open(kTextures, "textures");
-  readTextures(textures, b.scene);
-  textures.end();
-  Reader materials = open(kMaterials, "materials");
-  readMaterials(materials, b.scene, b.scene.textures.size());
-  materials.end();
-  Reader meshes = open(kMeshes, "meshes");
-  readMeshes(meshes, b.scene);
-  meshes.end();
-  Reader instances = open(kInstances, "instances");
-  readInstances(instances, b.scene);
-  instances.end();
-  Reader lights = open(kLights, "lights");
-  readLights(lights, b.scene);
-  lights.end();
-  Reader cameras = open(kCameras, "cameras");
-  readCameras(cameras, b.scene);
-  cameras.end();
+  Scene& scene = b.scene;
+  auto read = [&](std::uint32_t t, const char* name, const auto& body) {
+    Reader r = open(t, name);
+    body(r);
+    r.end();
+  };
+  read(kScene, "scene", [&](Reader& r) { readScene(r, b); });
+  read(kTextures, "textures", [&](Reader& r) { readTextures(r, scene); });
+  read(kMaterials, "materials", [&](Reader& r) { readMaterials(r, scene, scene.textures.size()); });
+  read(kMeshes, "meshes", [&](Reader& r) { readMeshes(r, scene); });
+  read(kInstances, "instances", [&](Reader& r) { readInstances(r, scene); });
+  read(kLights, "lights", [&](Reader& r) { readLights(r, scene); });
+  read(kCameras, "cameras", [&](Reader& r) { readCameras(r, scene); });
   if (b.hasTrees != (sections.count(kTrees) > 0) || b.hasTrees != !b.scene.lights.empty()) {
     throw BakeError(path + ": the light trees and the lights do not agree");
   }
-  if (b.hasTrees) {
-    Reader trees = open(kTrees, "light trees");
-    readTrees(trees, b);
-    trees.end();
-  }
+  if (b.hasTrees) read(kTrees, "light trees", [&](Reader& r) { readTrees(r, b); });
   return b;
 }
 

@@ -12,18 +12,12 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
                      const std::atomic<bool>* stop) {
   PlaybackOutcome out;
   const RenderRequest& r = request.frame;
-  const Camera start = resolveCamera(scene, r, &out.framed);
-  out.defaultRig = scene.lights.empty();
-  const std::vector<Light> rig = out.defaultRig ? defaultLightRig(start) : std::vector<Light>{};
-  const std::vector<Light>& lights = out.defaultRig ? rig : scene.lights;
-  out.lightCount = lights.size();
-  Renderer renderer(scene, lights, r.width, r.height, r.method, r.lightcuts.trees,
-                    out.defaultRig ? nullptr : r.prebuiltTrees);
-  out.bakeMs = renderer.bakeMs();
-  FrameSettings settings;
-  settings.ambient = r.ambient;
-  settings.lightsPerPass = r.lightsPerPass;
-  settings.lightcuts = r.lightcuts;
+  PreparedRender p(scene, r);
+  const Camera& start = p.camera;
+  out.framed = p.framed;
+  out.defaultRig = p.defaultRig;
+  out.lightCount = p.lightCount;
+  out.bakeMs = p.renderer->bakeMs();
   const Bounds bounds = scene.bounds();
   const glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : 0.5f * (bounds.min + bounds.max);
   const float sweep = glm::radians(request.orbitDegrees);
@@ -40,7 +34,7 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
       camera = orbitCamera(start, centre, sweep * float(i) / float(frames));
     }
     FrameStats stats;
-    const Image image = renderer.render(makeView(camera, r.width, r.height), settings, &stats);
+    const Image image = p.renderer->render(makeView(camera, r.width, r.height), p.settings, &stats);
     out.renderMs.push_back(stats.renderMs);
     if (i == 0) out.firstFrameCuts = stats.cuts;
     ++out.framesRendered;

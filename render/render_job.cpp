@@ -15,22 +15,27 @@ Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* fra
   return scene.cameras[std::max(request.camera, 0)];
 }
 
-RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
-  RenderOutcome out;
-  const Camera camera = resolveCamera(scene, request, &out.framed);
-  out.defaultRig = scene.lights.empty();
-  const std::vector<Light> rig = out.defaultRig ? defaultLightRig(camera) : std::vector<Light>{};
-  const std::vector<Light>& lights = out.defaultRig ? rig : scene.lights;
-  out.lightCount = lights.size();
-  Renderer renderer(scene, lights, request.width, request.height, request.method, request.lightcuts.trees,
-                    out.defaultRig ? nullptr : request.prebuiltTrees);
-  FrameSettings settings;
+PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
+    : defaultRig(scene.lights.empty()), camera(resolveCamera(scene, request, &framed)) {
+  if (defaultRig) rig = defaultLightRig(camera);
+  const std::vector<Light>& lights = defaultRig ? rig : scene.lights;
+  lightCount = lights.size();
+  renderer = std::make_unique<Renderer>(scene, lights, request.width, request.height, request.method,
+                                        request.lightcuts.trees, defaultRig ? nullptr : request.prebuiltTrees);
   settings.ambient = request.ambient;
   settings.lightsPerPass = request.lightsPerPass;
   settings.lightcuts = request.lightcuts;
-  out.bakeMs = renderer.bakeMs();
-  if (renderer.lightcuts()) out.nodeColour = renderer.lightcuts()->nodeColour();
-  out.image = renderer.render(makeView(camera, request.width, request.height), settings, &out.frame);
+}
+
+RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
+  const PreparedRender p(scene, request);
+  RenderOutcome out;
+  out.framed = p.framed;
+  out.defaultRig = p.defaultRig;
+  out.lightCount = p.lightCount;
+  out.bakeMs = p.renderer->bakeMs();
+  if (p.renderer->lightcuts()) out.nodeColour = p.renderer->lightcuts()->nodeColour();
+  out.image = p.renderer->render(makeView(p.camera, request.width, request.height), p.settings, &out.frame);
   return out;
 }
 

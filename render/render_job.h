@@ -1,6 +1,7 @@
 #pragma once
 // One still image of a scene: picks the camera (the scene's, or the thumbnail framing) and
 // the lights (the scene's, or the default rig), then renders. Shared by the CLI and tests.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,21 @@ struct RenderOutcome {
 // The camera a request resolves to. Throws Error ("SCENE: camera N does not exist ...") for a
 // camera index the scene lacks.
 Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* framed = nullptr);
+
+// What a request sets up before its first frame (a still or a playback): the camera, the
+// lights (the scene's, or the default rig fixed to that camera), a renderer for them, and
+// the frame settings. Needs a current context. Throws Error or gl::GlError.
+struct PreparedRender {
+  PreparedRender(const Scene& scene, const RenderRequest& request);
+  // Before `camera`: its initialiser sets `framed`.
+  bool framed = false;      // no camera: the thumbnail framing
+  bool defaultRig = false;  // no lights: the default rig
+  Camera camera;
+  std::vector<Light> rig;
+  std::size_t lightCount = 0;
+  std::unique_ptr<Renderer> renderer;
+  FrameSettings settings;
+};
 
 // Renders with the current context. Throws Error (bad request) or gl::GlError.
 RenderOutcome renderScene(const Scene& scene, const RenderRequest& request);
