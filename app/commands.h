@@ -1,0 +1,115 @@
+#pragma once
+// The manylight command line, one file per group of subcommands: main.cpp (options and
+// dispatch), common.cpp (what several share), render_command.cpp, play_command.cpp,
+// tool_commands.cpp (bake, fit-gamma, compare). Each run* function returns an exit code
+// and throws Error for bad input, which main turns into one line.
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "bake/baked_file.h"
+#include "gl/context.h"
+#include "render/colour_calibration.h"
+#include "render/image.h"
+#include "render/lightcuts_method.h"
+#include "scene/gltf_loader.h"
+
+namespace manylight::cli {
+
+using Clock = std::chrono::steady_clock;
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitFailure = 1,    // bad input or a failed render
+  kExitUsage = 2,      // bad command line
+  kExitNoContext = 3,  // no OpenGL 3.3 context could be created
+  kExitDiffer = 4,     // compare: the images differ beyond the thresholds
+  kExitInterrupted = 130,  // play: Ctrl-C or SIGTERM
+};
+
+double msSince(Clock::time_point t);
+// "R,G,B" → a colour; throws CLI::ValidationError.
+glm::vec3 parseRgb(const std::string& s);
+// The node colour coding's figures for --stats.
+nlohmann::json nodeColourStats(const NodeColourCoder& c);
+// A context, or null after saying why there is none.
+std::unique_ptr<gl::Context> openContext(gl::Backend backend, bool verbose);
+
+struct SceneArgs {
+  std::string lightList, treeSplit = "metric", nodeColour = "rgb9e5";
+  std::size_t lightBudget = 1u << 20;
+  LoadOptions limits;
+  CLI::Option* splitOption = nullptr;
+  CLI::Option* colourOption = nullptr;
+
+  LoadOptions options() const {
+    LoadOptions o = limits;
+    o.lightBudget = lightBudget;
+    return o;
+  }
+  TreeOptions trees() const {
+    TreeOptions t;
+    t.split = treeSplit == "metric" ? Split::Metric : Split::LongestAxis;
+    t.nodeColour = nodeColour == "fitted" ? NodeColourCoding::Fitted : NodeColourCoding::Rgb9e5;
+    return t;
+  }
+};
+
+void addSceneOptions(CLI::App* app, SceneArgs& a);
+// A glTF scene with its light list, or a baked scene (by its magic, or the .mlbake
+// extension) with its trees. Throws Error.
+BakedScene loadAnyScene(const std::string& path, const SceneArgs& a);
+
+struct RenderArgs {
+  std::vector<std::string> scenes;
+  std::string output, outDir, format = "png", shard, size = "640x480", method = "reference", backend = "auto";
+  std::string ambient = "0,0,0", statsPath, errorMode = "node";
+  float error = 0.02f;
+  int maxCut = LightcutsSettings{}.maxCut;
+  int camera = -1;
+  float exposure = 0.0f;
+  SceneArgs input;
+  bool verbose = false;
+};
+
+int runRender(const RenderArgs& a, Clock::time_point processStart);
+
+struct PlayArgs {
+  std::string scene, output, size = "640x360", method = "lightcuts", backend = "auto", statsPath;
+  std::string errorMode = "node";
+  float error = 0.02f;
+  int maxCut = LightcutsSettings{}.maxCut;
+  int camera = -1, frames = 0;
+  float orbit = 360.0f, exposure = 0.0f, fps = 30.0f;
+  SceneArgs input;
+  bool verbose = false;
+};
+
+int runPlay(const PlayArgs& a, Clock::time_point processStart);
+
+struct BakeArgs {
+  std::string scene, output, statsPath;
+  SceneArgs input;
+};
+
+int runBake(const BakeArgs& a, Clock::time_point processStart);
+
+struct FitArgs {
+  std::string pairs, calibrate, backend = "auto", codes = std::to_string(kFirstCalibrationCode) + "..255";
+  bool verbose = false;
+};
+
+int runFitGamma(const FitArgs& a);
+
+struct CompareArgs {
+  std::string a, b, diff;
+  CompareThresholds thresholds;
+};
+
+int runCompare(const CompareArgs& a);
+
+}  // namespace manylight::cli

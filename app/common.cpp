@@ -1,0 +1,129 @@
+#include <cstdio>
+#include <iostream>
+
+#include "app/commands.h"
+#include "bake/light_tree_layout.h"
+#include "scene/light_list.h"
+
+namespace manylight::cli {
+namespace {
+
+nlohmann::json perChannel(const double (&v)[3]) { return nlohmann::json::array({v[0], v[1], v[2]}); }
+
+}  // namespace
+
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+glm::vec3 parseRgb(const std::string& s) {
+  glm::vec3 v;
+  char tail = 0;
+  if (std::sscanf(s.c_str(), "%f,%f,%f%c", &v.r, &v.g, &v.b, &tail) != 3 || !(v == v)) {
+    throw CLI::ValidationError("--ambient", "expected R,G,B, got '" + s + "'");
+  }
+  return v;
+}
+
+nlohmann::json nodeColourStats(const NodeColourCoder& c) {
+  nlohmann::json j = {
+      {"coding", c.coding() == NodeColourCoding::Fitted ? "fitted" : "rgb9e5"},
+      {"bytes_per_node", 4 * layout::kNodeWords},
+      {"bytes_per_spot_node", 4 * layout::kSpotNodeWords},
+      {"slack", c.slack},
+      {"slack_floor", c.slackFloor},
+      {"max_error", perChannel(c.maxError)},
+      {"p99_error", perChannel(c.p99Error)},
+  };
+  if (c.coding() == NodeColourCoding::Fitted) {
+    j["gamma"] = c.fit().gamma;
+    j["a"] = c.fit().a;
+    j["fit_worst_relative"] = c.fit().worstRelative;
+    j["fitted_to_srgb"] = c.fittedToSrgb();
+  } else {
+    j["scale"] = c.scale();
+  }
+  return j;
+}
+
+std::unique_ptr<gl::Context> openContext(gl::Backend backend, bool verbose) {
+  std::vector<std::string> attempts;
+  std::unique_ptr<gl::Context> context;
+  try {
+    context = gl::createContext(backend, &attempts);
+  } catch (const gl::GlError& e) {
+    std::cerr << "manylight: " << e.what() << "\n";
+    return nullptr;
+  }
+  if (verbose) {
+    for (const std::string& line : attempts) std::cerr << "manylight: context " << line << "\n";
+    std::cerr << "manylight: using " << context->backend() << ", " << context->renderer() << ", "
+              << context->version() << "\n";
+  }
+  return context;
+}
+
+
+
+void addSceneOptions(CLI::App* app, SceneArgs& a) {
+  a.splitOption = app->add_option("--tree-split", a.treeSplit,
+                                  "lightcuts: how the light trees pair lights: metric (the split with the smallest "
+                                  "cluster metric) or longest-axis (the k-d baseline)")
+                      ->capture_default_str()
+                      ->check(CLI::IsMember({"metric", "longest-axis"}));
+  a.colourOption = app->add_option("--node-colour", a.nodeColour,
+                                   "lightcuts: how tree nodes store their colour in one word: rgb9e5 (9-bit "
+                                   "mantissas, shared exponent; the more accurate) or fitted (8 bits per channel on "
+                                   "a power law fitted to the scene, shared exponent)")
+                       ->capture_default_str()
+                       ->check(CLI::IsMember({"fitted", "rgb9e5"}));
+  app->add_option("--lights", a.lightList,
+                  "Add point lights from a list: .csv, .json, or the Lightcuts-in-UE4 text dump "
+                  "(8-bit sRGB colours; see README)");
+  app->add_option("--light-budget", a.lightBudget, "Most lights a scene may have")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(1), std::size_t(1) << 26));
+  app->add_option("--max-file-bytes", a.limits.maxFileBytes,
+                  "Most bytes a scene may read: the glTF/GLB and its external files")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--max-texture-size", a.limits.maxTextureDimension, "Largest texture width or height")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--max-texture-pixels", a.limits.maxTexturePixels, "Most pixels in one texture")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--max-triangles", a.limits.maxTriangles, "Most triangles over all meshes")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--crease-angle", a.limits.creaseAngleDegrees,
+                  "Degrees: normals built for meshes without them are smooth across gentler edges, "
+                  "split across sharper ones")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 180.0f));
+}
+
+BakedScene loadAnyScene(const std::string& path, const SceneArgs& a) {
+  const bool baked = isBakedFile(path) || std::filesystem::path(path).extension() == ".mlbake";
+  if (!baked) {
+    BakedScene b;
+    b.scene = loadGltf(path, a.options());
+    if (!a.lightList.empty()) appendLightList(a.lightList, b.scene, a.options());
+    return b;
+  }
+  BakedScene b = readBakedScene(path, a.limits.maxFileBytes);
+  b.scene.name = path;  // messages name the file the user gave
+  if (!a.lightList.empty()) throw Error(path + ": a baked scene's lights are baked in; bake it again with --lights");
+  if (b.scene.lights.size() > a.lightBudget) {
+    throw Error(path + ": " + std::to_string(b.scene.lights.size()) + " lights exceed the light budget of " +
+                std::to_string(a.lightBudget) + " (--light-budget)");
+  }
+  const TreeOptions asked = a.trees();
+  if ((a.splitOption->count() > 0 && asked.split != b.trees.split) ||
+      (a.colourOption->count() > 0 && asked.nodeColour != b.trees.nodeColour)) {
+    throw Error(path + ": baked with other --tree-split or --node-colour settings; bake it again to change them");
+  }
+  return b;
+}
+
+}  // namespace manylight::cli

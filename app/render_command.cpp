@@ -1,0 +1,167 @@
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "app/commands.h"
+#include "render/progress.h"
+#include "render/render_job.h"
+#include "scene/output_file.h"
+
+namespace manylight::cli {
+namespace {
+
+bool parseShard(const std::string& text, Shard& shard) {
+  char tail = 0;
+  return std::sscanf(text.c_str(), "%d/%d%c", &shard.index, &shard.count, &tail) == 2 && shard.count >= 1 &&
+         shard.index >= 0 && shard.index < shard.count;
+}
+
+// What render and bake share: how a scene is read, and how its light trees are built.
+
+
+// Loads, renders and writes one scene; returns its stats. Throws Error.
+nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request, const std::string& scenePath,
+                         const std::string& output, const gl::Context& context) {
+  const auto start = Clock::now();
+  const BakedScene baked = loadAnyScene(scenePath, a.input);
+  const Scene& scene = baked.scene;
+  const double loadMs = msSince(start);
+  for (const std::string& w : scene.warnings) std::cerr << "manylight: " << scenePath << ": warning: " << w << "\n";
+  RenderRequest bakedRequest = request;
+  if (baked.hasTrees) bakedRequest.prebuiltTrees = &baked.packed;
+  const RenderOutcome out = renderScene(scene, bakedRequest);
+  if (out.framed && a.verbose) std::cerr << "manylight: " << scenePath << ": no camera; framing the bounds\n";
+  if (out.defaultRig) std::cerr << "manylight: " << scenePath << ": no lights; using the default three-light rig\n";
+  writeImage(out.image, output, a.exposure);
+  nlohmann::json stats = {
+      {"scene", scenePath},
+      {"output", output},
+      {"method", methodName(request.method)},
+      {"backend", context.backend()},
+      {"renderer", context.renderer()},
+      {"gl_version", context.version()},
+      {"width", request.width},
+      {"height", request.height},
+      {"lights", out.lightCount},
+      {"default_light_rig", out.defaultRig},
+      {"framed_camera", out.framed},
+      {"lighting_passes", out.frame.lightingPasses},
+      {"load_ms", loadMs},
+      {"render_ms", out.frame.renderMs},
+      {"scene_ms", msSince(start)},
+      {"degenerate_triangles", scene.topology.degenerateTriangles},
+      {"boundary_edges", scene.topology.boundaryEdges},
+      {"non_manifold_edges", scene.topology.nonManifoldEdges},
+  };
+  if (request.method != Method::Reference) {
+    const CutStats& c = out.frame.cuts;
+    stats["bake_ms"] = out.bakeMs;
+    stats["avg_cut_size"] = c.averageCut;
+    stats["max_cut_size"] = c.maxCut;
+    stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
+    stats["light_evaluations_per_pixel"] = c.lightEvaluations;
+    stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
+    stats["covered_pixels"] = c.pixels;
+    if (request.method == Method::Lightcuts) {
+      stats["error"] = request.lightcuts.error;
+      stats["error_mode"] = a.errorMode;
+    }
+    stats["max_cut"] = request.lightcuts.maxCut;
+    stats["tree_split"] = baked.hasTrees ? (baked.trees.split == Split::Metric ? "metric" : "longest-axis")
+                                         : a.input.treeSplit;
+    stats["baked_trees"] = baked.hasTrees;
+    stats["node_colour"] = nodeColourStats(out.nodeColour);
+  }
+  if (a.verbose) {
+    std::cerr << "manylight: " << output << ": " << request.width << "x" << request.height << ", " << out.lightCount
+              << " lights, load " << loadMs << " ms, render " << out.frame.renderMs << " ms\n";
+  }
+  return stats;
+}
+
+}  // namespace
+
+int runRender(const RenderArgs& a, Clock::time_point processStart) {
+  RenderRequest request;
+  char tail = 0;
+  if (std::sscanf(a.size.c_str(), "%dx%d%c", &request.width, &request.height, &tail) != 2 ||
+      request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384) {
+    std::cerr << "manylight: --size: expected WxH within 1..16384, got '" << a.size << "'\n";
+    return kExitUsage;
+  }
+  const bool batch = !a.outDir.empty();
+  if (batch == !a.output.empty()) {
+    std::cerr << "manylight: render: give either -o OUTPUT (one scene) or --out-dir DIR (any number)\n";
+    return kExitUsage;
+  }
+  if (!batch && a.scenes.size() != 1) {
+    std::cerr << "manylight: render: -o takes one scene, got " << a.scenes.size() << "; use --out-dir for several\n";
+    return kExitUsage;
+  }
+  request.camera = a.camera;
+  request.ambient = parseRgb(a.ambient);
+  request.method = parseMethod(a.method);
+  request.lightcuts.error = a.error;
+  request.lightcuts.maxCut = a.maxCut;
+  request.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
+  request.lightcuts.trees = a.input.trees();
+  const gl::Backend backend = gl::parseBackend(a.backend);
+  std::vector<Thumbnail> jobs;
+  if (batch) {
+    Shard shard;
+    if (!a.shard.empty() && !parseShard(a.shard, shard)) {
+      std::cerr << "manylight: --shard: expected I/N with 0 <= I < N, got '" << a.shard << "'\n";
+      return kExitUsage;
+    }
+    jobs = planThumbnails(a.scenes, a.outDir, a.format, shard);
+  } else {
+    checkOutputPath(a.output);
+    jobs.push_back({a.scenes[0], a.output});
+  }
+
+  const std::unique_ptr<gl::Context> context = openContext(backend, a.verbose);
+  if (!context) return kExitNoContext;
+  if (!batch) {
+    nlohmann::json stats = renderOne(a, request, jobs[0].scene, jobs[0].output, *context);
+    stats["total_ms"] = msSince(processStart);
+    if (!a.statsPath.empty()) writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
+    return kExitOk;
+  }
+  // A batch: one context for all; a failing scene is reported and the rest go on.
+  nlohmann::json all = nlohmann::json::array();
+  int failed = 0;
+  Progress progress(int(jobs.size()));
+  for (const Thumbnail& job : jobs) {
+    progress.step(job.scene);
+    try {
+      all.push_back(renderOne(a, request, job.scene, job.output, *context));
+    } catch (const Error& e) {
+      progress.clear();
+      std::cerr << "manylight: " << e.what() << "\n";
+      all.push_back({{"scene", job.scene}, {"output", job.output}, {"error", e.what()}});
+      ++failed;
+    } catch (const std::exception& e) {
+      progress.clear();
+      std::cerr << "manylight: " << job.scene << ": " << e.what() << "\n";
+      all.push_back({{"scene", job.scene}, {"output", job.output}, {"error", e.what()}});
+      ++failed;
+    }
+  }
+  progress.clear();
+  const double totalMs = msSince(processStart);
+  std::cerr << "manylight: rendered " << jobs.size() - failed << " of " << jobs.size() << " scenes into " << a.outDir
+            << (failed ? ", " + std::to_string(failed) + " failed" : std::string()) << " (" << std::lround(totalMs)
+            << " ms)\n";
+  if (!a.statsPath.empty()) {
+    const nlohmann::json stats = {{"scenes", all},
+                                  {"rendered", int(jobs.size()) - failed},
+                                  {"failed", failed},
+                                  {"shard", a.shard.empty() ? "0/1" : a.shard},
+                                  {"backend", context->backend()},
+                                  {"total_ms", totalMs}};
+    writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
+  }
+  return failed ? kExitFailure : kExitOk;
+}
+
+}  // namespace manylight::cli
