@@ -34,6 +34,7 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
       camera = orbitCamera(start, centre, sweep * float(i) / float(frames));
     }
     FrameStats stats;
+    p.settings.readCutStats = i == 0;  // a readback of the whole statistics target; reported once
     const Image image = p.renderer->render(makeView(camera, r.width, r.height), p.settings, &stats);
     out.renderMs.push_back(stats.renderMs);
     if (i == 0) out.firstFrameCuts = stats.cuts;

@@ -144,7 +144,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   if (stats) {
     stats->renderMs = std::chrono::duration<double, std::milli>(end - start).count();
     stats->lightingPasses = passes;
-    if (lightcuts_) stats->cuts = lightcuts_->cutStats();
+    if (lightcuts_ && settings.readCutStats) stats->cuts = lightcuts_->cutStats();
   }
   return image;
 }

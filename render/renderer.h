@@ -25,6 +25,7 @@ struct FrameSettings {
   glm::vec3 ambient{0.0f};
   int lightsPerPass = 0;  // 0: ReferenceMethod::lightsPerPass(pixels)
   LightcutsSettings lightcuts;  // the lightcuts methods
+  bool readCutStats = true;     // lightcuts: read the per-pixel cut statistics back into FrameStats
 };
 
 struct FrameStats {
