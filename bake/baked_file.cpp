@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <string_view>
@@ -498,6 +499,8 @@ void writeBakedScene(const std::string& path, const BakedScene& baked) {
 }
 
 bool isBakedFile(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;  // a FIFO would block the read
   std::ifstream f(path, std::ios::binary);
   char magic[8] = {};
   f.read(magic, 8);

@@ -67,6 +67,13 @@ Image readImage(const std::string& path) {
 
 CompareOutcome compareImageFiles(const std::string& a, const std::string& b, const CompareThresholds& thresholds,
                                  const std::string& diffPath) {
+  for (const std::string& path : {a, b}) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    if (!ec && fs::exists(st) && !fs::is_regular_file(st)) {
+      throw ImageError(path + ": not a regular file");  // a FIFO would block the reader
+    }
+  }
   CompareOutcome out;
   std::string reason;
   if (!imageIo().compareFiles(a.c_str(), b.c_str(), thresholds.maxAbs, nullptr, 0.0, &out.values, &reason)) {

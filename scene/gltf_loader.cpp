@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 
@@ -382,6 +383,12 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
   scene.name = path;
   try {
     {
+      // Opening a FIFO (or a device) would block until someone writes to it.
+      std::error_code ec;
+      const std::filesystem::file_status st = std::filesystem::status(path, ec);
+      if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+        throw SceneError("not a regular file");
+      }
       std::ifstream probe(path, std::ios::binary);
       if (!probe) throw SceneError(std::string("cannot open: ") + std::strerror(errno));
     }

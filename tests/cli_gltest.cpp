@@ -1,4 +1,5 @@
 // The manylight program as a user runs it: outputs, stats, exit codes and exact messages.
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -412,6 +413,23 @@ TEST(Cli, PlaybackFollowsTheCameraAnimation) {
   EXPECT_EQ(stats["camera_animation"], true);
   EXPECT_TRUE(fs::exists(dir / "a4.png"));
   EXPECT_FALSE(fs::exists(dir / "a5.png"));
+}
+
+TEST(Cli, FifosAreRefusedWithoutBlocking) {
+  // Opening a FIFO for reading blocks until a writer comes; every input must be checked first.
+  const fs::path fifo = testFolder() / "pipe.gltf";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string bin = "timeout 20 " + std::string(MANYLIGHT_BIN);
+  const std::string out = (testFolder() / "x.png").string();
+  for (const std::string& args : {"render " + fifo.string() + " -o " + out, "bake " + fifo.string() + " -o " +
+                                      (testFolder() / "x.mlbake").string(),
+                                  "compare " + fifo.string() + " " + fifo.string(), "fit-gamma " + fifo.string(),
+                                  "play " + fifo.string() + " -o " + (testFolder() / "%d.png").string()}) {
+    SCOPED_TRACE(args);
+    const std::string err = (testFolder() / "err.txt").string();
+    EXPECT_EQ(shell(bin + " " + args + " 2>" + err), 1);
+    EXPECT_EQ(readFile(err), "manylight: " + fifo.string() + ": not a regular file\n");
+  }
 }
 
 TEST(Cli, RerenderingIsBitIdenticalAndBackendsAgree) {
