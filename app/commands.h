@@ -3,13 +3,12 @@
 // dispatch), common.cpp (what several share), render_command.cpp, play_command.cpp,
 // tool_commands.cpp (bake, fit-gamma, compare). Each run* function returns an exit code
 // and throws Error for bad input, which main turns into one line.
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "bake/baked_file.h"
 #include "gl/context.h"
@@ -24,10 +23,10 @@ using Clock = std::chrono::steady_clock;
 
 enum ExitCode : int {
   kExitOk = 0,
-  kExitFailure = 1,    // bad input or a failed render
-  kExitUsage = 2,      // bad command line
-  kExitNoContext = 3,  // no OpenGL 3.3 context could be created
-  kExitDiffer = 4,     // compare: the images differ beyond the thresholds
+  kExitFailure = 1,        // bad input or a failed render
+  kExitUsage = 2,          // bad command line
+  kExitNoContext = 3,      // no OpenGL 3.3 context could be created
+  kExitDiffer = 4,         // compare: the images differ beyond the thresholds
   kExitInterrupted = 130,  // play: Ctrl-C or SIGTERM
 };
 
@@ -66,7 +65,8 @@ BakedScene loadAnyScene(const std::string& path, const SceneArgs& a);
 
 struct RenderArgs {
   std::vector<std::string> scenes;
-  std::string output, outDir, format = "png", shard, size = "640x480", method = "reference", backend = "auto";
+  std::string output, outDir, format = "png", shard, size = "640x480", method = "reference",
+                              backend = "auto";
   std::string ambient = "0,0,0", statsPath, errorMode = "node";
   float error = 0.02f;
   int maxCut = LightcutsSettings{}.maxCut;
@@ -99,7 +99,8 @@ struct BakeArgs {
 int runBake(const BakeArgs& a, Clock::time_point processStart);
 
 struct FitArgs {
-  std::string pairs, calibrate, backend = "auto", codes = std::to_string(kFirstCalibrationCode) + "..255";
+  std::string pairs, calibrate, backend = "auto",
+                                codes = std::to_string(kFirstCalibrationCode) + "..255";
   bool verbose = false;
 };
 

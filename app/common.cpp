@@ -8,7 +8,9 @@
 namespace manylight::cli {
 namespace {
 
-nlohmann::json perChannel(const double (&v)[3]) { return nlohmann::json::array({v[0], v[1], v[2]}); }
+nlohmann::json perChannel(const double (&v)[3]) {
+  return nlohmann::json::array({v[0], v[1], v[2]});
+}
 
 }  // namespace
 
@@ -63,20 +65,22 @@ std::unique_ptr<gl::Context> openContext(gl::Backend backend, bool verbose) {
   return context;
 }
 
-
-
 void addSceneOptions(CLI::App* app, SceneArgs& a) {
-  a.splitOption = app->add_option("--tree-split", a.treeSplit,
-                                  "lightcuts: how the light trees pair lights: metric (the split with the smallest "
-                                  "cluster metric) or longest-axis (the k-d baseline)")
-                      ->capture_default_str()
-                      ->check(CLI::IsMember({"metric", "longest-axis"}));
-  a.colourOption = app->add_option("--node-colour", a.nodeColour,
-                                   "lightcuts: how tree nodes store their colour in one word: rgb9e5 (9-bit "
-                                   "mantissas, shared exponent; the more accurate) or fitted (8 bits per channel on "
-                                   "a power law fitted to the scene, shared exponent)")
-                       ->capture_default_str()
-                       ->check(CLI::IsMember({"fitted", "rgb9e5"}));
+  a.splitOption =
+      app->add_option(
+             "--tree-split", a.treeSplit,
+             "lightcuts: how the light trees pair lights: metric (the split with the smallest "
+             "cluster metric) or longest-axis (the k-d baseline)")
+          ->capture_default_str()
+          ->check(CLI::IsMember({"metric", "longest-axis"}));
+  a.colourOption =
+      app->add_option(
+             "--node-colour", a.nodeColour,
+             "lightcuts: how tree nodes store their colour in one word: rgb9e5 (9-bit "
+             "mantissas, shared exponent; the more accurate) or fitted (8 bits per channel on "
+             "a power law fitted to the scene, shared exponent)")
+          ->capture_default_str()
+          ->check(CLI::IsMember({"fitted", "rgb9e5"}));
   app->add_option("--lights", a.lightList,
                   "Add point lights from a list: .csv, .json, or the Lightcuts-in-UE4 text dump "
                   "(8-bit sRGB colours; see README)");
@@ -87,7 +91,8 @@ void addSceneOptions(CLI::App* app, SceneArgs& a) {
                   "Most bytes a scene may read: the glTF/GLB and its external files")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app->add_option("--max-texture-size", a.limits.maxTextureDimension, "Largest texture width or height")
+  app->add_option("--max-texture-size", a.limits.maxTextureDimension,
+                  "Largest texture width or height")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app->add_option("--max-texture-pixels", a.limits.maxTexturePixels, "Most pixels in one texture")
@@ -113,15 +118,19 @@ BakedScene loadAnyScene(const std::string& path, const SceneArgs& a) {
   }
   BakedScene b = readBakedScene(path, a.limits.maxFileBytes);
   b.scene.name = path;  // messages name the file the user gave
-  if (!a.lightList.empty()) throw Error(path + ": a baked scene's lights are baked in; bake it again with --lights");
+  if (!a.lightList.empty())
+    throw Error(path + ": a baked scene's lights are baked in; bake it again with --lights");
   if (b.scene.lights.size() > a.lightBudget) {
-    throw Error(path + ": " + std::to_string(b.scene.lights.size()) + " lights exceed the light budget of " +
-                std::to_string(a.lightBudget) + " (--light-budget)");
+    throw Error(path + ": " + std::to_string(b.scene.lights.size()) +
+                " lights exceed the light budget of " + std::to_string(a.lightBudget) +
+                " (--light-budget)");
   }
   const TreeOptions asked = a.trees();
   if ((a.splitOption->count() > 0 && asked.split != b.trees.split) ||
       (a.colourOption->count() > 0 && asked.nodeColour != b.trees.nodeColour)) {
-    throw Error(path + ": baked with other --tree-split or --node-colour settings; bake it again to change them");
+    throw Error(
+        path +
+        ": baked with other --tree-split or --node-colour settings; bake it again to change them");
   }
   return b;
 }

@@ -14,37 +14,50 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   RenderArgs r;
   CLI::App* render = app.add_subcommand("render", "Render glTF scenes (.gltf or .glb) to images");
-  render->add_option("scenes", r.scenes, "glTF 2.0 scenes (.gltf or .glb) or baked scenes (.mlbake); several with --out-dir")->required();
-  render->add_option("-o,--output", r.output, "Output image: .png (8-bit sRGB) or .exr (linear float)");
-  render->add_option("--out-dir", r.outDir,
-                     "Render every scene into DIR/NAME.png (or --format) in one process and one context; a "
-                     "failing scene is reported and the others go on");
-  render->add_option("--format", r.format, "--out-dir: png or exr")->capture_default_str()->check(
-      CLI::IsMember({"png", "exr"}));
-  render->add_option("--shard", r.shard,
-                     "--out-dir: I/N renders scenes I, I+N, I+2N, ... (0 <= I < N) of the list, to spread a batch "
-                     "over machines");
+  render
+      ->add_option(
+          "scenes", r.scenes,
+          "glTF 2.0 scenes (.gltf or .glb) or baked scenes (.mlbake); several with --out-dir")
+      ->required();
+  render->add_option("-o,--output", r.output,
+                     "Output image: .png (8-bit sRGB) or .exr (linear float)");
+  render->add_option(
+      "--out-dir", r.outDir,
+      "Render every scene into DIR/NAME.png (or --format) in one process and one context; a "
+      "failing scene is reported and the others go on");
+  render->add_option("--format", r.format, "--out-dir: png or exr")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"png", "exr"}));
+  render->add_option(
+      "--shard", r.shard,
+      "--out-dir: I/N renders scenes I, I+N, I+2N, ... (0 <= I < N) of the list, to spread a batch "
+      "over machines");
   render->add_option("--size", r.size, "Image size WxH")->capture_default_str();
   render->add_option("--camera", r.camera,
                      "Index of the glTF camera to use (default: the first; with none, frame the "
                      "scene's bounds from a 3/4 view)");
-  render->add_option("--method", r.method,
-                     "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
-                     "cuts through a light tree), lightcuts-distance (cuts by radius of influence)")
+  render
+      ->add_option(
+          "--method", r.method,
+          "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
+          "cuts through a light tree), lightcuts-distance (cuts by radius of influence)")
       ->capture_default_str()
       ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
   render->add_option("--error", r.error, "lightcuts: relative error ε of the stopping rule")
       ->capture_default_str()
       ->check(CLI::Range(1e-6f, 1.0f));
-  render->add_option("--error-mode", r.errorMode,
-                     "lightcuts: node (the paper's rule: each node's bound ≤ ε·estimate) or total "
-                     "(guaranteed: the sum of the cut's error bounds ≤ ε·estimate)")
+  render
+      ->add_option("--error-mode", r.errorMode,
+                   "lightcuts: node (the paper's rule: each node's bound ≤ ε·estimate) or total "
+                   "(guaranteed: the sum of the cut's error bounds ≤ ε·estimate)")
       ->capture_default_str()
       ->check(CLI::IsMember({"node", "total"}));
   render->add_option("--max-cut", r.maxCut, "lightcuts: most nodes in a pixel's cut")
       ->capture_default_str()
       ->check(CLI::Range(1, kMaxCutLimit));
-  render->add_option("--backend", r.backend, "Context: auto (EGL device, EGL surfaceless, OSMesa), egl, osmesa")
+  render
+      ->add_option("--backend", r.backend,
+                   "Context: auto (EGL device, EGL surfaceless, OSMesa), egl, osmesa")
       ->capture_default_str();
   render->add_option("--ambient", r.ambient, "Ambient radiance R,G,B, multiplied by the albedo")
       ->capture_default_str();
@@ -52,34 +65,44 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   addSceneOptions(render, r.input);
   render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
-  render->add_flag("-v,--verbose", r.verbose, "Say which context was chosen and how long things took");
+  render->add_flag("-v,--verbose", r.verbose,
+                   "Say which context was chosen and how long things took");
   PlayArgs p;
-  CLI::App* playCmd = app.add_subcommand(
-      "play", "Play a scene or baked scene: its camera animation, or a turntable orbit; one context, only the "
-              "camera changing");
+  CLI::App* playCmd = app.add_subcommand("play",
+                                         "Play a scene or baked scene: its camera animation, or a "
+                                         "turntable orbit; one context, only the "
+                                         "camera changing");
   playCmd->add_option("scene", p.scene, "glTF 2.0 scene or baked scene (.mlbake)")->required();
-  playCmd->add_option("-o,--output", p.output,
-                      "Frames: a pattern with one %d or %0Nd (frames/%04d.png, .exr), or - for raw RGBA8 frames "
-                      "(sRGB, rows top-down, W*H*4 bytes each) on stdout")
+  playCmd
+      ->add_option("-o,--output", p.output,
+                   "Frames: a pattern with one %d or %0Nd (frames/%04d.png, .exr), or - for raw "
+                   "RGBA8 frames "
+                   "(sRGB, rows top-down, W*H*4 bytes each) on stdout")
       ->required();
-  playCmd->add_option("--frames", p.frames,
-                      "Frames to play (default: the camera animation to its last key at --fps, or 120 for an orbit)")
+  playCmd
+      ->add_option("--frames", p.frames,
+                   "Frames to play (default: the camera animation to its last key at --fps, or 120 "
+                   "for an orbit)")
       ->check(CLI::Range(1, 1000000));
   playCmd->add_option("--fps", p.fps, "Frames per second of animation time")
       ->capture_default_str()
       ->check(CLI::Range(0.001f, 10000.0f));
-  playCmd->add_option("--orbit", p.orbit,
-                      "Without a camera animation: degrees the camera turns about the scene's vertical axis over "
-                      "all frames")
+  playCmd
+      ->add_option("--orbit", p.orbit,
+                   "Without a camera animation: degrees the camera turns about the scene's "
+                   "vertical axis over "
+                   "all frames")
       ->capture_default_str();
   playCmd->add_option("--size", p.size, "Frame size WxH")->capture_default_str();
-  playCmd->add_option("--camera", p.camera, "Index of the glTF camera the orbit starts from (default: the first; "
-                                            "with none, the thumbnail framing)");
+  playCmd->add_option("--camera", p.camera,
+                      "Index of the glTF camera the orbit starts from (default: the first; "
+                      "with none, the thumbnail framing)");
   playCmd->add_option("--method", p.method, "reference, lightcuts or lightcuts-distance")
       ->capture_default_str()
       ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
-  playCmd->add_option("--error", p.error, "lightcuts: relative error ε")->capture_default_str()->check(
-      CLI::Range(1e-6f, 1.0f));
+  playCmd->add_option("--error", p.error, "lightcuts: relative error ε")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6f, 1.0f));
   playCmd->add_option("--error-mode", p.errorMode, "lightcuts: node or total")
       ->capture_default_str()
       ->check(CLI::IsMember({"node", "total"}));
@@ -89,42 +112,53 @@ int main(int argc, char** argv) {
   playCmd->add_option("--exposure", p.exposure, "Exposure in EV")->capture_default_str();
   playCmd->add_option("--backend", p.backend, "Context: auto, egl, osmesa")->capture_default_str();
   addSceneOptions(playCmd, p.input);
-  playCmd->add_option("--stats", p.statsPath, "Write per-frame times and facts about the playback as JSON");
+  playCmd->add_option("--stats", p.statsPath,
+                      "Write per-frame times and facts about the playback as JSON");
   playCmd->add_flag("-v,--verbose", p.verbose, "Say which context was chosen and the frame rate");
   BakeArgs b;
-  CLI::App* bake = app.add_subcommand(
-      "bake", "Bake a glTF scene (and a light list) into one file that render loads without rebuilding anything");
+  CLI::App* bake = app.add_subcommand("bake",
+                                      "Bake a glTF scene (and a light list) into one file that "
+                                      "render loads without rebuilding anything");
   bake->add_option("scene", b.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
   bake->add_option("-o,--output", b.output, "The baked scene, NAME.mlbake")->required();
   addSceneOptions(bake, b.input);
   bake->add_option("--stats", b.statsPath, "Write timings and facts about the bake as JSON");
   FitArgs f;
-  CLI::App* fit = app.add_subcommand(
-      "fit-gamma", "Fit out = A·in^γ by least squares in log–log space, to pairs from a file or measured by rendering");
+  CLI::App* fit = app.add_subcommand("fit-gamma",
+                                     "Fit out = A·in^γ by least squares in log–log space, to pairs "
+                                     "from a file or measured by rendering");
   fit->add_option("pairs", f.pairs, "CSV of in,out pairs (a header line 'in,out' is allowed)");
-  fit->add_option("--calibrate", f.calibrate,
-                  "Measure the pairs: render the scene lit by its first light in each grey 8-bit colour "
-                  "1..255 on the reference path");
-  fit->add_option("--codes", f.codes,
-                  "--calibrate: the 8-bit codes probed, FIRST..LAST (the default skips the sRGB curve's "
-                  "linear segment, codes 0-10, which no power law fits)")
+  fit->add_option(
+      "--calibrate", f.calibrate,
+      "Measure the pairs: render the scene lit by its first light in each grey 8-bit colour "
+      "1..255 on the reference path");
+  fit->add_option(
+         "--codes", f.codes,
+         "--calibrate: the 8-bit codes probed, FIRST..LAST (the default skips the sRGB curve's "
+         "linear segment, codes 0-10, which no power law fits)")
       ->capture_default_str();
-  fit->add_option("--backend", f.backend, "Context for --calibrate: auto, egl, osmesa")->capture_default_str();
+  fit->add_option("--backend", f.backend, "Context for --calibrate: auto, egl, osmesa")
+      ->capture_default_str();
   fit->add_flag("-v,--verbose", f.verbose, "Say which context was chosen");
   CompareArgs c;
-  CLI::App* compare = app.add_subcommand(
-      "compare", "Compare two images value by value (OpenImageIO); exit 0 when they match, 4 when they differ");
+  CLI::App* compare = app.add_subcommand("compare",
+                                         "Compare two images value by value (OpenImageIO); exit 0 "
+                                         "when they match, 4 when they differ");
   compare->add_option("a", c.a, "First image (any format OpenImageIO reads)")->required();
   compare->add_option("b", c.b, "Second image")->required();
-  compare->add_option("--max-abs", c.thresholds.maxAbs,
-                      "A value may differ by this much (8-bit files are read as code/255: 0.004 allows one code)")
+  compare
+      ->add_option("--max-abs", c.thresholds.maxAbs,
+                   "A value may differ by this much (8-bit files are read as code/255: 0.004 "
+                   "allows one code)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e30));
-  compare->add_option("--max-fraction", c.thresholds.maxFraction,
-                      "The share of values (0..1) allowed to differ by more than --max-abs")
+  compare
+      ->add_option("--max-fraction", c.thresholds.maxFraction,
+                   "The share of values (0..1) allowed to differ by more than --max-abs")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
-  compare->add_option("--diff", c.diff, "Where to write the difference image when they differ (default: B.diff.png)");
+  compare->add_option("--diff", c.diff,
+                      "Where to write the difference image when they differ (default: B.diff.png)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -143,11 +177,12 @@ int main(int argc, char** argv) {
     std::cerr << "manylight: " << e.what() << "\n";
     return kExitFailure;
   } catch (const std::exception& e) {
-    const std::string& subject = *fit       ? (f.pairs.empty() ? f.calibrate : f.pairs)
-                                 : *compare ? c.a
-                                 : *bake    ? b.scene
-                                 : *playCmd ? p.scene
-                                 : r.scenes.empty() ? std::string("render") : r.scenes[0];
+    const std::string& subject = *fit               ? (f.pairs.empty() ? f.calibrate : f.pairs)
+                                 : *compare         ? c.a
+                                 : *bake            ? b.scene
+                                 : *playCmd         ? p.scene
+                                 : r.scenes.empty() ? std::string("render")
+                                                    : r.scenes[0];
     std::cerr << "manylight: " << subject << ": " << e.what() << "\n";
     return kExitFailure;
   }

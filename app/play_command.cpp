@@ -31,12 +31,14 @@ bool frameName(const std::string& pattern, int frame, std::string* name) {
     const bool zero = j < pattern.size() && pattern[j] == '0';
     if (zero) ++j;
     int width = 0;
-    while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j])) && width < 100) {
+    while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j])) &&
+           width < 100) {
       width = width * 10 + (pattern[j++] - '0');
     }
     if (j >= pattern.size() || pattern[j] != 'd' || width > 12) return false;
     std::string digits = std::to_string(frame);
-    if (int(digits.size()) < width) digits.insert(0, std::size_t(width) - digits.size(), zero ? '0' : ' ');
+    if (int(digits.size()) < width)
+      digits.insert(0, std::size_t(width) - digits.size(), zero ? '0' : ' ');
     out += digits;
     ++conversions;
     i = j;
@@ -48,16 +50,14 @@ bool frameName(const std::string& pattern, int frame, std::string* name) {
 std::atomic<bool> gInterrupted{false};
 extern "C" void onInterrupt(int) { gInterrupted = true; }
 
-
-
 }  // namespace
 
 int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   PlaybackRequest request;
   RenderRequest& r = request.frame;
   char tail = 0;
-  if (std::sscanf(a.size.c_str(), "%dx%d%c", &r.width, &r.height, &tail) != 2 || r.width < 1 || r.height < 1 ||
-      r.width > 16384 || r.height > 16384) {
+  if (std::sscanf(a.size.c_str(), "%dx%d%c", &r.width, &r.height, &tail) != 2 || r.width < 1 ||
+      r.height < 1 || r.width > 16384 || r.height > 16384) {
     std::cerr << "manylight: --size: expected WxH within 1..16384, got '" << a.size << "'\n";
     return kExitUsage;
   }
@@ -65,7 +65,8 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   if (!toStdout) {
     std::string first;
     if (!frameName(a.output, 0, &first)) {
-      std::cerr << "manylight: -o: expected a file name pattern with one %d or %0Nd (e.g. frames/%04d.png), or - "
+      std::cerr << "manylight: -o: expected a file name pattern with one %d or %0Nd (e.g. "
+                   "frames/%04d.png), or - "
                    "for raw RGBA8 frames on stdout, got '"
                 << a.output << "'\n";
       return kExitUsage;
@@ -86,7 +87,8 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   const auto loadStart = Clock::now();
   const BakedScene baked = loadAnyScene(a.scene, a.input);
   const double loadMs = msSince(loadStart);
-  for (const std::string& w : baked.scene.warnings) std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";
+  for (const std::string& w : baked.scene.warnings)
+    std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";
   if (baked.hasTrees) r.prebuiltTrees = &baked.packed;
   const std::unique_ptr<gl::Context> context = openContext(backend, a.verbose);
   if (!context) return kExitNoContext;
@@ -105,10 +107,13 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
           codes.resize(image.rgba.size());
           const double scale = std::exp2(double(a.exposure));
           for (std::size_t i = 0; i < codes.size(); ++i) {
-            codes[i] = i % 4 == 3 ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
-                                  : encodeSrgb8(image.rgba[i] * scale);
+            codes[i] =
+                i % 4 == 3
+                    ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
+                    : encodeSrgb8(image.rgba[i] * scale);
           }
-          if (std::fwrite(codes.data(), 1, codes.size(), stdout) != codes.size() || std::fflush(stdout) != 0) {
+          if (std::fwrite(codes.data(), 1, codes.size(), stdout) != codes.size() ||
+              std::fflush(stdout) != 0) {
             outputClosed = true;
             return false;
           }
@@ -126,35 +131,38 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   double renderSum = 0.0;
   for (double ms : out.renderMs) renderSum += ms;
   if (!a.statsPath.empty()) {
-    nlohmann::json stats = {{"scene", a.scene},
-                            {"output", a.output},
-                            {"method", methodName(r.method)},
-                            {"backend", context->backend()},
-                            {"renderer", context->renderer()},
-                            {"width", r.width},
-                            {"height", r.height},
-                            {"lights", out.lightCount},
-                            {"baked_trees", baked.hasTrees},
-                            {"frames", out.framesRendered},
-                            {"camera_animation", out.animated},
-                            {"load_ms", loadMs},
-                            {"bake_ms", out.bakeMs},
-                            {"frame_render_ms", out.renderMs},
-                            {"render_fps", renderSum > 0.0 ? 1000.0 * out.framesRendered / renderSum : 0.0},
-                            {"wall_fps", wallMs > 0.0 ? 1000.0 * out.framesRendered / wallMs : 0.0},
-                            {"interrupted", gInterrupted.load()},
-                            {"output_closed", outputClosed},
-                            {"total_ms", msSince(processStart)}};
+    nlohmann::json stats = {
+        {"scene", a.scene},
+        {"output", a.output},
+        {"method", methodName(r.method)},
+        {"backend", context->backend()},
+        {"renderer", context->renderer()},
+        {"width", r.width},
+        {"height", r.height},
+        {"lights", out.lightCount},
+        {"baked_trees", baked.hasTrees},
+        {"frames", out.framesRendered},
+        {"camera_animation", out.animated},
+        {"load_ms", loadMs},
+        {"bake_ms", out.bakeMs},
+        {"frame_render_ms", out.renderMs},
+        {"render_fps", renderSum > 0.0 ? 1000.0 * out.framesRendered / renderSum : 0.0},
+        {"wall_fps", wallMs > 0.0 ? 1000.0 * out.framesRendered / wallMs : 0.0},
+        {"interrupted", gInterrupted.load()},
+        {"output_closed", outputClosed},
+        {"total_ms", msSince(processStart)}};
     writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
   if (gInterrupted) {
     std::cerr << "manylight: interrupted after " << out.framesRendered << " frames\n";
     return kExitInterrupted;
   }
-  if (outputClosed) std::cerr << "manylight: output closed after " << out.framesRendered - 1 << " frames\n";
+  if (outputClosed)
+    std::cerr << "manylight: output closed after " << out.framesRendered - 1 << " frames\n";
   if (a.verbose) {
-    std::cerr << "manylight: " << out.framesRendered << " frames, " << (renderSum > 0 ? 1000.0 * out.framesRendered / renderSum : 0)
-              << " fps rendering, " << 1000.0 * out.framesRendered / std::max(wallMs, 1e-9) << " fps overall\n";
+    std::cerr << "manylight: " << out.framesRendered << " frames, "
+              << (renderSum > 0 ? 1000.0 * out.framesRendered / renderSum : 0) << " fps rendering, "
+              << 1000.0 * out.framesRendered / std::max(wallMs, 1e-9) << " fps overall\n";
   }
   return kExitOk;
 }

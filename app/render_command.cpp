@@ -12,26 +12,29 @@ namespace {
 
 bool parseShard(const std::string& text, Shard& shard) {
   char tail = 0;
-  return std::sscanf(text.c_str(), "%d/%d%c", &shard.index, &shard.count, &tail) == 2 && shard.count >= 1 &&
-         shard.index >= 0 && shard.index < shard.count;
+  return std::sscanf(text.c_str(), "%d/%d%c", &shard.index, &shard.count, &tail) == 2 &&
+         shard.count >= 1 && shard.index >= 0 && shard.index < shard.count;
 }
 
 // What render and bake share: how a scene is read, and how its light trees are built.
 
-
 // Loads, renders and writes one scene; returns its stats. Throws Error.
-nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request, const std::string& scenePath,
-                         const std::string& output, const gl::Context& context) {
+nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
+                         const std::string& scenePath, const std::string& output,
+                         const gl::Context& context) {
   const auto start = Clock::now();
   const BakedScene baked = loadAnyScene(scenePath, a.input);
   const Scene& scene = baked.scene;
   const double loadMs = msSince(start);
-  for (const std::string& w : scene.warnings) std::cerr << "manylight: " << scenePath << ": warning: " << w << "\n";
+  for (const std::string& w : scene.warnings)
+    std::cerr << "manylight: " << scenePath << ": warning: " << w << "\n";
   RenderRequest bakedRequest = request;
   if (baked.hasTrees) bakedRequest.prebuiltTrees = &baked.packed;
   const RenderOutcome out = renderScene(scene, bakedRequest);
-  if (out.framed && a.verbose) std::cerr << "manylight: " << scenePath << ": no camera; framing the bounds\n";
-  if (out.defaultRig) std::cerr << "manylight: " << scenePath << ": no lights; using the default three-light rig\n";
+  if (out.framed && a.verbose)
+    std::cerr << "manylight: " << scenePath << ": no camera; framing the bounds\n";
+  if (out.defaultRig)
+    std::cerr << "manylight: " << scenePath << ": no lights; using the default three-light rig\n";
   writeImage(out.image, output, a.exposure);
   nlohmann::json stats = {
       {"scene", scenePath},
@@ -67,14 +70,16 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request, cons
       stats["error_mode"] = a.errorMode;
     }
     stats["max_cut"] = request.lightcuts.maxCut;
-    stats["tree_split"] = baked.hasTrees ? (baked.trees.split == Split::Metric ? "metric" : "longest-axis")
-                                         : a.input.treeSplit;
+    stats["tree_split"] = baked.hasTrees
+                              ? (baked.trees.split == Split::Metric ? "metric" : "longest-axis")
+                              : a.input.treeSplit;
     stats["baked_trees"] = baked.hasTrees;
     stats["node_colour"] = nodeColourStats(out.nodeColour);
   }
   if (a.verbose) {
-    std::cerr << "manylight: " << output << ": " << request.width << "x" << request.height << ", " << out.lightCount
-              << " lights, load " << loadMs << " ms, render " << out.frame.renderMs << " ms\n";
+    std::cerr << "manylight: " << output << ": " << request.width << "x" << request.height << ", "
+              << out.lightCount << " lights, load " << loadMs << " ms, render "
+              << out.frame.renderMs << " ms\n";
   }
   return stats;
 }
@@ -91,11 +96,13 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   }
   const bool batch = !a.outDir.empty();
   if (batch == !a.output.empty()) {
-    std::cerr << "manylight: render: give either -o OUTPUT (one scene) or --out-dir DIR (any number)\n";
+    std::cerr
+        << "manylight: render: give either -o OUTPUT (one scene) or --out-dir DIR (any number)\n";
     return kExitUsage;
   }
   if (!batch && a.scenes.size() != 1) {
-    std::cerr << "manylight: render: -o takes one scene, got " << a.scenes.size() << "; use --out-dir for several\n";
+    std::cerr << "manylight: render: -o takes one scene, got " << a.scenes.size()
+              << "; use --out-dir for several\n";
     return kExitUsage;
   }
   request.camera = a.camera;
@@ -149,9 +156,10 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   }
   progress.clear();
   const double totalMs = msSince(processStart);
-  std::cerr << "manylight: rendered " << jobs.size() - failed << " of " << jobs.size() << " scenes into " << a.outDir
-            << (failed ? ", " + std::to_string(failed) + " failed" : std::string()) << " (" << std::lround(totalMs)
-            << " ms)\n";
+  std::cerr << "manylight: rendered " << jobs.size() - failed << " of " << jobs.size()
+            << " scenes into " << a.outDir
+            << (failed ? ", " + std::to_string(failed) + " failed" : std::string()) << " ("
+            << std::lround(totalMs) << " ms)\n";
   if (!a.statsPath.empty()) {
     const nlohmann::json stats = {{"scenes", all},
                                   {"rendered", int(jobs.size()) - failed},

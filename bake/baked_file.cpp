@@ -21,7 +21,6 @@
 namespace manylight {
 namespace {
 
-
 constexpr std::uint32_t tag(const char (&name)[5]) {
   return std::uint32_t(std::uint8_t(name[0])) | std::uint32_t(std::uint8_t(name[1])) << 8 |
          std::uint32_t(std::uint8_t(name[2])) << 16 | std::uint32_t(std::uint8_t(name[3])) << 24;
@@ -96,9 +95,11 @@ class Reader {
   template <typename T>
   std::vector<T> array() {
     const std::uint64_t n = get<std::uint64_t>();
-    if (n > (bytes_.size() - at_) / sizeof(T)) fail("an array of " + std::to_string(n) + " runs past the section");
+    if (n > (bytes_.size() - at_) / sizeof(T))
+      fail("an array of " + std::to_string(n) + " runs past the section");
     std::vector<T> v(n);
-    if (n > 0) std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));  // memcpy from/to null is UB
+    if (n > 0)
+      std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));  // memcpy from/to null is UB
     at_ += n * sizeof(T);
     return v;
   }
@@ -108,13 +109,16 @@ class Reader {
   }
   std::uint32_t count(std::uint32_t most, const char* what) {
     const auto n = get<std::uint32_t>();
-    if (n > most) fail(std::string(what) + ": " + std::to_string(n) + " is more than " + std::to_string(most));
+    if (n > most)
+      fail(std::string(what) + ": " + std::to_string(n) + " is more than " + std::to_string(most));
     return n;
   }
   void end() {
     if (at_ != bytes_.size()) fail(std::to_string(bytes_.size() - at_) + " bytes left over");
   }
-  [[noreturn]] void fail(const std::string& problem) const { throw BakeError(where_ + ": " + problem); }
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw BakeError(where_ + ": " + problem);
+  }
 
  private:
   void need(std::size_t n) {
@@ -137,7 +141,8 @@ void writeTrees(Writer& w, const BakedScene& b) {
   const NodeColourCoder& c = p.colour;
   w.put(std::uint8_t(c.coding() == NodeColourCoding::Fitted ? 1 : 0));
   const PowerFit& f = c.fit();
-  w.put(f.gamma), w.put(f.a), w.put(f.log10A), w.put(f.r2), w.put(f.worstRelative), w.put(std::uint64_t(f.pairs));
+  w.put(f.gamma), w.put(f.a), w.put(f.log10A), w.put(f.r2), w.put(f.worstRelative),
+      w.put(std::uint64_t(f.pairs));
   w.put(std::uint8_t(c.fittedToSrgb()));
   w.put(c.scale());
   for (int k = 0; k < 3; ++k) w.put(c.maxError[k]);
@@ -172,7 +177,8 @@ std::string section(std::uint32_t which, const BakedScene& b) {
     w.put(std::uint32_t(s.textures.size()));
     for (const Texture& t : s.textures) {
       w.put(std::int32_t(t.width)), w.put(std::int32_t(t.height));
-      const bool flags[7] = {t.repeatS, t.repeatT, t.mirrorS, t.mirrorT, t.linearMag, t.linearMin, t.mipmaps};
+      const bool flags[7] = {t.repeatS,   t.repeatT,   t.mirrorS, t.mirrorT,
+                             t.linearMag, t.linearMin, t.mipmaps};
       for (bool f : flags) w.put(std::uint8_t(f));
       w.array(t.rgba);
     }
@@ -182,7 +188,8 @@ std::string section(std::uint32_t which, const BakedScene& b) {
       w.put(std::uint32_t(m.primitives.size()));
       for (const Primitive& p : m.primitives) {
         w.put(std::int32_t(p.material));
-        w.array(p.positions), w.array(p.normals), w.array(p.texcoords), w.array(p.colours), w.array(p.indices);
+        w.array(p.positions), w.array(p.normals), w.array(p.texcoords), w.array(p.colours),
+            w.array(p.indices);
       }
     }
   } else if (which == kInstances) {
@@ -208,7 +215,8 @@ std::string section(std::uint32_t which, const BakedScene& b) {
       w.put(std::uint32_t(c.animation.chain.size()));
       for (const AnimatedNode& n : c.animation.chain) {
         w.put(std::uint8_t(n.hasMatrix));
-        putFloats(w, n.matrix), putFloats(w, n.translation), putFloats(w, n.rotation), putFloats(w, n.scale);
+        putFloats(w, n.matrix), putFloats(w, n.translation), putFloats(w, n.rotation),
+            putFloats(w, n.scale);
         w.put(std::uint32_t(n.tracks.size()));
         for (const AnimationTrack& t : n.tracks) {
           w.put(std::uint8_t(t.path)), w.put(std::uint8_t(t.interpolation));
@@ -232,7 +240,8 @@ bool finite(const float* v, std::size_t n) {
 template <typename T>
 T getFinite(Reader& r, const char* what) {
   const T v = r.get<T>();
-  if (!finite(reinterpret_cast<const float*>(&v), sizeof(T) / sizeof(float))) r.fail(std::string(what) + " is not finite");
+  if (!finite(reinterpret_cast<const float*>(&v), sizeof(T) / sizeof(float)))
+    r.fail(std::string(what) + " is not finite");
   return v;
 }
 
@@ -257,7 +266,8 @@ void readMaterials(Reader& r, Scene& s, std::size_t textures) {
   for (Material& m : s.materials) {
     m.baseColorFactor = getFinite<glm::vec4>(r, "a base colour");
     m.baseColorTexture = r.get<std::int32_t>();
-    if (m.baseColorTexture < -1 || m.baseColorTexture >= std::int64_t(textures)) r.fail("texture index out of range");
+    if (m.baseColorTexture < -1 || m.baseColorTexture >= std::int64_t(textures))
+      r.fail("texture index out of range");
     m.metallic = getFinite<float>(r, "metallic");
     m.roughness = getFinite<float>(r, "roughness");
     m.emissive = getFinite<glm::vec3>(r, "emissive");
@@ -270,11 +280,14 @@ void readTextures(Reader& r, Scene& s) {
   for (Texture& t : s.textures) {
     t.width = r.get<std::int32_t>();
     t.height = r.get<std::int32_t>();
-    if (t.width < 1 || t.height < 1 || t.width > 16384 || t.height > 16384) r.fail("texture size out of range");
-    bool* flags[7] = {&t.repeatS, &t.repeatT, &t.mirrorS, &t.mirrorT, &t.linearMag, &t.linearMin, &t.mipmaps};
+    if (t.width < 1 || t.height < 1 || t.width > 16384 || t.height > 16384)
+      r.fail("texture size out of range");
+    bool* flags[7] = {&t.repeatS,   &t.repeatT,   &t.mirrorS, &t.mirrorT,
+                      &t.linearMag, &t.linearMin, &t.mipmaps};
     for (bool* f : flags) *f = r.get<std::uint8_t>() != 0;
     t.rgba = r.array<std::uint8_t>();
-    if (t.rgba.size() != std::size_t(t.width) * t.height * 4) r.fail("texture pixels do not match its size");
+    if (t.rgba.size() != std::size_t(t.width) * t.height * 4)
+      r.fail("texture pixels do not match its size");
   }
 }
 
@@ -284,7 +297,8 @@ void readMeshes(Reader& r, Scene& s) {
     m.primitives.resize(r.count(1u << 16, "primitives"));
     for (Primitive& p : m.primitives) {
       p.material = r.get<std::int32_t>();
-      if (p.material < -1 || p.material >= std::int64_t(s.materials.size())) r.fail("material index out of range");
+      if (p.material < -1 || p.material >= std::int64_t(s.materials.size()))
+        r.fail("material index out of range");
       p.positions = r.array<glm::vec3>();
       p.normals = r.array<glm::vec3>();
       p.texcoords = r.array<glm::vec2>();
@@ -359,7 +373,8 @@ void readCameras(Reader& r, Scene& s) {
         t.values = r.array<float>();
         const std::string problem = checkTrack(t);
         if (!problem.empty()) r.fail("animation track: " + problem);
-        if (t.times.back() > c.animation.duration) r.fail("animation track: keys past the duration");
+        if (t.times.back() > c.animation.duration)
+          r.fail("animation track: keys past the duration");
       }
     }
   }
@@ -371,47 +386,53 @@ void readTrees(Reader& r, BakedScene& b) {
   for (int t = 0; t < 3; ++t) p.leaves[t] = r.get<std::int32_t>();
   const bool fitted = r.get<std::uint8_t>() != 0;
   PowerFit f;
-  f.gamma = r.get<double>(), f.a = r.get<double>(), f.log10A = r.get<double>(), f.r2 = r.get<double>();
+  f.gamma = r.get<double>(), f.a = r.get<double>(), f.log10A = r.get<double>(),
+  f.r2 = r.get<double>();
   f.worstRelative = r.get<double>();
   f.pairs = std::size_t(r.get<std::uint64_t>());
   const bool toSrgb = r.get<std::uint8_t>() != 0;
   const float scale = r.get<float>();
-  if (!(f.gamma > 0.0) || !(f.a > 0.0) || !std::isfinite(f.gamma) || !std::isfinite(f.a) || !(scale > 0.0f) ||
-      !std::isfinite(scale)) {
+  if (!(f.gamma > 0.0) || !(f.a > 0.0) || !std::isfinite(f.gamma) || !std::isfinite(f.a) ||
+      !(scale > 0.0f) || !std::isfinite(scale)) {
     r.fail("node colour constants out of range");
   }
-  p.colour = NodeColourCoder(fitted ? NodeColourCoding::Fitted : NodeColourCoding::Rgb9e5, f, toSrgb, scale);
+  p.colour = NodeColourCoder(fitted ? NodeColourCoding::Fitted : NodeColourCoding::Rgb9e5, f,
+                             toSrgb, scale);
   for (int k = 0; k < 3; ++k) p.colour.maxError[k] = r.get<double>();
   for (int k = 0; k < 3; ++k) p.colour.p99Error[k] = r.get<double>();
   p.colour.slack = r.get<double>();
   p.colour.slackFloor = r.get<double>();
-  if (!(p.colour.slack >= 0.0 && p.colour.slack < 1e3) || !(p.colour.slackFloor >= 0.0)) r.fail("slack out of range");
+  if (!(p.colour.slack >= 0.0 && p.colour.slack < 1e3) || !(p.colour.slackFloor >= 0.0))
+    r.fail("slack out of range");
   p.words = r.array<std::uint32_t>();
   if (p.words.size() % 4 != 0) r.fail("tree words are not whole texels");
   // The trees must be the layout's, for lights the file holds: each complete, in place, and
   // every representative a light of its type.
   int typeCount[3] = {0, 0, 0};
-  for (const Light& l : b.scene.lights) ++typeCount[l.type == LightType::Directional ? 0 : l.type == LightType::Point ? 1 : 2];
+  for (const Light& l : b.scene.lights)
+    ++typeCount[l.type == LightType::Directional ? 0 : l.type == LightType::Point ? 1 : 2];
   int start[3] = {0, 0, 0};
   for (int t = 1; t < 3; ++t) start[t] = start[t - 1] + typeCount[t - 1];
   std::uint64_t expected = 0;
   for (int t = 0; t < 3; ++t) {
     const std::int64_t leaves = p.leaves[t];
-    if (leaves < 0 || (leaves & (leaves - 1)) != 0 || leaves < typeCount[t] || (typeCount[t] == 0) != (leaves == 0) ||
-        leaves > (std::int64_t(1) << 27)) {
+    if (leaves < 0 || (leaves & (leaves - 1)) != 0 || leaves < typeCount[t] ||
+        (typeCount[t] == 0) != (leaves == 0) || leaves > (std::int64_t(1) << 27)) {
       r.fail("tree " + std::to_string(t) + " has " + std::to_string(leaves) + " leaves for " +
              std::to_string(typeCount[t]) + " lights");
     }
     if (leaves == 0) continue;
     const std::uint64_t stride = t == 2 ? layout::kSpotNodeWords : layout::kNodeWords;
-    if (std::uint64_t(p.base[t]) != expected) r.fail("tree " + std::to_string(t) + " is not where the layout puts it");
+    if (std::uint64_t(p.base[t]) != expected)
+      r.fail("tree " + std::to_string(t) + " is not where the layout puts it");
     const std::uint64_t nodes = 2 * std::uint64_t(leaves) - 1;
-    if (expected + nodes * stride > p.words.size()) r.fail("tree " + std::to_string(t) + " runs past its words");
+    if (expected + nodes * stride > p.words.size())
+      r.fail("tree " + std::to_string(t) + " runs past its words");
     for (std::uint64_t i = 0; i < nodes; ++i) {
       const auto rep = std::int32_t(p.words[expected + i * stride + 3]);
       if (rep != -1 && (rep < start[t] || rep >= start[t] + typeCount[t])) {
-        r.fail("tree " + std::to_string(t) + ": node " + std::to_string(i) + " names light " + std::to_string(rep) +
-               ", not one of its type");
+        r.fail("tree " + std::to_string(t) + ": node " + std::to_string(i) + " names light " +
+               std::to_string(rep) + ", not one of its type");
       }
     }
     expected += nodes * stride;
@@ -433,7 +454,8 @@ class MappedFile {
     } else if (!S_ISREG(st.st_mode)) {
       problem = "not a regular file";
     } else if (std::uint64_t(st.st_size) > maxBytes) {
-      problem = std::to_string(st.st_size) + " bytes exceed the limit of " + std::to_string(maxBytes) + " bytes";
+      problem = std::to_string(st.st_size) + " bytes exceed the limit of " +
+                std::to_string(maxBytes) + " bytes";
     } else if (st.st_size > 0) {
       void* p = ::mmap(nullptr, std::size_t(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
       if (p == MAP_FAILED) {
@@ -471,8 +493,10 @@ BakedScene bakeScene(Scene scene, const TreeOptions& trees) {
 }
 
 void writeBakedScene(const std::string& path, const BakedScene& baked) {
-  if (!littleEndian()) throw BakeError(path + ": baked files are little-endian; this machine is not");
-  std::vector<std::uint32_t> tags = {kScene, kMaterials, kTextures, kMeshes, kInstances, kLights, kCameras};
+  if (!littleEndian())
+    throw BakeError(path + ": baked files are little-endian; this machine is not");
+  std::vector<std::uint32_t> tags = {kScene,     kMaterials, kTextures, kMeshes,
+                                     kInstances, kLights,    kCameras};
   if (baked.hasTrees) tags.push_back(kTrees);
   std::vector<std::string> bodies;
   for (std::uint32_t t : tags) bodies.push_back(section(t, baked));
@@ -481,7 +505,8 @@ void writeBakedScene(const std::string& path, const BakedScene& baked) {
   table.put(std::uint32_t(tags.size()));
   std::uint64_t offset = kBakedHeaderBytes + 4 + tags.size() * 24;
   for (std::size_t i = 0; i < tags.size(); ++i) {
-    table.put(tags[i]), table.put(std::uint32_t(0)), table.put(offset), table.put(std::uint64_t(bodies[i].size()));
+    table.put(tags[i]), table.put(std::uint32_t(0)), table.put(offset),
+        table.put(std::uint64_t(bodies[i].size()));
     offset += bodies[i].size();
   }
   std::string file(kBakedHeaderBytes, '\0');
@@ -513,7 +538,8 @@ BakedScene readBakedScene(const std::string& path, std::uint64_t maxBytes) {
   if (bytes.size() < 8 || std::memcmp(bytes.data(), kBakedMagic, 8) != 0) {
     throw BakeError(path + ": not a manylight baked file (no MLBAKE magic)");
   }
-  if (bytes.size() < kBakedHeaderBytes) throw BakeError(path + ": truncated: " + std::to_string(bytes.size()) + " bytes");
+  if (bytes.size() < kBakedHeaderBytes)
+    throw BakeError(path + ": truncated: " + std::to_string(bytes.size()) + " bytes");
   std::uint32_t version, flags;
   std::uint64_t size, sum;
   std::memcpy(&version, &bytes[8], 4);
@@ -524,13 +550,15 @@ BakedScene readBakedScene(const std::string& path, std::uint64_t maxBytes) {
     throw BakeError(path + ": baked format version " + std::to_string(version) + ", expected " +
                     std::to_string(kBakedFormatVersion) + "; bake the scene again");
   }
-  if (!littleEndian()) throw BakeError(path + ": baked files are little-endian; this machine is not");
+  if (!littleEndian())
+    throw BakeError(path + ": baked files are little-endian; this machine is not");
   if (size != bytes.size()) {
-    throw BakeError(path + ": truncated or extended: " + std::to_string(bytes.size()) + " bytes, the header says " +
-                    std::to_string(size));
+    throw BakeError(path + ": truncated or extended: " + std::to_string(bytes.size()) +
+                    " bytes, the header says " + std::to_string(size));
   }
   if (flags != 0) throw BakeError(path + ": unknown flags " + std::to_string(flags));
-  if (bakedChecksum(bytes.substr(kBakedHeaderBytes)) != sum) throw BakeError(path + ": checksum mismatch: the file is damaged");
+  if (bakedChecksum(bytes.substr(kBakedHeaderBytes)) != sum)
+    throw BakeError(path + ": checksum mismatch: the file is damaged");
 
   Reader table(bytes.substr(kBakedHeaderBytes), path + ": section table");
   const std::uint32_t count = table.count(64, "sections");
@@ -542,7 +570,8 @@ BakedScene readBakedScene(const std::string& path, std::uint64_t maxBytes) {
     if (offset < kBakedHeaderBytes || offset > bytes.size() || length > bytes.size() - offset) {
       table.fail("a section lies outside the file");
     }
-    if (!sections.emplace(t, bytes.substr(offset, length)).second) table.fail("a section appears twice");
+    if (!sections.emplace(t, bytes.substr(offset, length)).second)
+      table.fail("a section appears twice");
   }
   auto open = [&](std::uint32_t t, const char* name) {
     const auto it = sections.find(t);

@@ -21,7 +21,7 @@ inline constexpr std::size_t kBakedHeaderBytes = 32;  // magic, version, flags, 
 
 struct BakedScene {
   Scene scene;
-  TreeOptions trees;    // how the trees were built and packed
+  TreeOptions trees;      // how the trees were built and packed
   bool hasTrees = false;  // false when the scene has no lights (the default rig is lit at render)
   PackedTrees packed;
 };

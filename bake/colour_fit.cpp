@@ -1,7 +1,7 @@
 #include "bake/colour_fit.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 
 #include "scene/text_table.h"
 
@@ -15,8 +15,8 @@ PowerFit fitPowerLaw(const std::vector<FitPair>& pairs) {
   double mx = 0.0, my = 0.0;
   for (const FitPair& p : pairs) {
     if (!(p.in > 0.0) || !(p.out > 0.0) || !std::isfinite(p.in) || !std::isfinite(p.out)) {
-      throw BakeError("cannot fit the pair (" + std::to_string(p.in) + ", " + std::to_string(p.out) +
-                      "): both values must be finite and > 0");
+      throw BakeError("cannot fit the pair (" + std::to_string(p.in) + ", " +
+                      std::to_string(p.out) + "): both values must be finite and > 0");
     }
     smallest = std::min(smallest, p.in);
     largest = std::max(largest, p.in);
@@ -58,12 +58,14 @@ std::vector<FitPair> readFitPairs(const std::string& path) {
     const std::vector<std::string_view> f = splitFields(line.text);
     const std::string where = path + ":" + std::to_string(line.number) + ": ";
     if (&line == &lines.front() && f.size() == 2 && f[0] == "in" && f[1] == "out") continue;
-    if (f.size() != 2) throw SceneError(where + "expected 2 fields (in,out), got " + std::to_string(f.size()));
+    if (f.size() != 2)
+      throw SceneError(where + "expected 2 fields (in,out), got " + std::to_string(f.size()));
     FitPair p;
     if (!parseNumber(f[0], p.in) || !parseNumber(f[1], p.out)) {
       throw SceneError(where + "expected two numbers, got '" + std::string(line.text) + "'");
     }
-    if (!(p.in > 0.0) || !(p.out > 0.0)) throw SceneError(where + "both values must be > 0 to be fitted in log space");
+    if (!(p.in > 0.0) || !(p.out > 0.0))
+      throw SceneError(where + "both values must be > 0 to be fitted in log space");
     pairs.push_back(p);
   }
   if (pairs.empty()) throw SceneError(path + ": no pairs");

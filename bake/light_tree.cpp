@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <future>
-#include <limits>
-
 #include <glm/gtc/constants.hpp>
+#include <limits>
 
 namespace manylight {
 namespace {
@@ -42,7 +41,8 @@ void mergeCones(glm::vec3& axis, float& spread, glm::vec3 axisB, float spreadB) 
   }
   // Rotate a towards b by to − ta.
   glm::dvec3 w = b - a * glm::dot(a, b);
-  if (glm::dot(w, w) < 1e-24) w = std::abs(a.x) < 0.9 ? glm::cross(a, {1, 0, 0}) : glm::cross(a, {0, 1, 0});
+  if (glm::dot(w, w) < 1e-24)
+    w = std::abs(a.x) < 0.9 ? glm::cross(a, {1, 0, 0}) : glm::cross(a, {0, 1, 0});
   w = glm::normalize(w);
   const double r = to - ta;
   axis = glm::vec3(glm::normalize(a * std::cos(r) + w * std::sin(r)));
@@ -79,8 +79,10 @@ LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double 
   n.intensity = l.intensity + r.intensity;
   const double il = scalar(l.intensity), ir = scalar(r.intensity);
   // Representative: the left child's with probability I_left / (I_left + I_right).
-  n.representative = (il + ir > 0.0 ? u * (il + ir) < il : u < 0.5) ? l.representative : r.representative;
-  n.invRange2 = (l.invRange2 == 0.0f || r.invRange2 == 0.0f) ? 0.0f : std::min(l.invRange2, r.invRange2);
+  n.representative =
+      (il + ir > 0.0 ? u * (il + ir) < il : u < 0.5) ? l.representative : r.representative;
+  n.invRange2 =
+      (l.invRange2 == 0.0f || r.invRange2 == 0.0f) ? 0.0f : std::min(l.invRange2, r.invRange2);
   n.invRange2Max = std::max(l.invRange2Max, r.invRange2Max);
   n.axis = l.axis;
   n.spread = l.spread;
@@ -88,9 +90,11 @@ LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double 
   // The axis is stored in float: widen the spread until it holds both children's cones as
   // stored, measured in double (plus a float step), so the bound stays conservative.
   for (const LightTreeNode* c : {&l, &r}) {
-    const double angle = std::acos(
-        std::clamp(glm::dot(glm::normalize(glm::dvec3(n.axis)), glm::normalize(glm::dvec3(c->axis))), -1.0, 1.0));
-    n.spread = std::max(n.spread, std::nextafter(float(std::min(angle + double(c->spread), kPi)), 4.0f));
+    const double angle = std::acos(std::clamp(
+        glm::dot(glm::normalize(glm::dvec3(n.axis)), glm::normalize(glm::dvec3(c->axis))), -1.0,
+        1.0));
+    n.spread =
+        std::max(n.spread, std::nextafter(float(std::min(angle + double(c->spread), kPi)), 4.0f));
   }
   n.outerAngle = std::max(l.outerAngle, r.outerAngle);
   return n;
@@ -141,7 +145,8 @@ struct Builder {
   void chooseAndPartition(int lo, int mid, int hi) {
     if (split == Split::LongestAxis) {
       glm::vec3 mn = items[lo].point, mx = mn;
-      for (int i = lo + 1; i < hi; ++i) mn = glm::min(mn, items[i].point), mx = glm::max(mx, items[i].point);
+      for (int i = lo + 1; i < hi; ++i)
+        mn = glm::min(mn, items[i].point), mx = glm::max(mx, items[i].point);
       const glm::vec3 e = mx - mn;
       partition(lo, mid, hi, e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2);
       return;
@@ -174,7 +179,8 @@ struct Builder {
     // The top levels build their halves on two threads (the halves touch disjoint items and
     // nodes); below, one thread each.
     if (depth < 2 && hi - lo > 4096) {
-      auto half = std::async(std::launch::async, [&] { build(left, capacity / 2, lo, mid, depth + 1); });
+      auto half =
+          std::async(std::launch::async, [&] { build(left, capacity / 2, lo, mid, depth + 1); });
       build(right, capacity / 2, mid, hi, depth + 1);
       half.get();
     } else {
@@ -195,12 +201,14 @@ double clusterMetric(const LightTreeNode& node, double c) {
   return scalar(node.intensity) * (alpha2 + cone * cone);
 }
 
-std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights, const TreeOptions& options) {
+std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights,
+                                       const TreeOptions& options) {
   const LightOrder order = lightOrder(lights);
   // The scene diagonal c of the metric: over the positions of point and spot lights.
   glm::dvec3 mn(std::numeric_limits<double>::max()), mx(-std::numeric_limits<double>::max());
   for (const Light& l : lights) {
-    if (l.type != LightType::Directional) mn = glm::min(mn, glm::dvec3(l.position)), mx = glm::max(mx, glm::dvec3(l.position));
+    if (l.type != LightType::Directional)
+      mn = glm::min(mn, glm::dvec3(l.position)), mx = glm::max(mx, glm::dvec3(l.position));
   }
   const double c = mx.x >= mn.x ? glm::length(mx - mn) : 0.0;
 

@@ -15,9 +15,8 @@
 // Directional lights are points on the unit sphere (their direction towards the light), as
 // in the paper.
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "bake/light_pack.h"
 #include "bake/node_colour.h"
@@ -28,7 +27,7 @@ namespace manylight {
 struct LightTreeNode {
   glm::vec3 boxMin{0.0f}, boxMax{0.0f};  // positions (directional: directions) of its lights
   glm::vec3 intensity{0.0f};             // Σ colour · intensity, linear RGB
-  int representative = -1;  // light texture slot (lightOrder) of the representative; −1: empty
+  int representative = -1;    // light texture slot (lightOrder) of the representative; −1: empty
   float invRange2 = 0.0f;     // 1/(largest range)²; 0 when any light has no range
   float invRange2Max = 0.0f;  // 1/(smallest range)²; 0 when no light has a range
   // Spot lights: a cone around `axis` holding every light's direction (half-angle `spread`),
@@ -62,7 +61,8 @@ struct TreeOptions {
 
 // One tree per light type present, in the order directional, point, spot. Representatives
 // are light texture slots of lightOrder(lights).
-std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights, const TreeOptions& options = {});
+std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights,
+                                       const TreeOptions& options = {});
 
 // The paper's cluster metric of a node, with c the scene's diagonal (used for spot cones).
 double clusterMetric(const LightTreeNode& node, double c);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-
 #include <glm/gtc/constants.hpp>
 
 #include "bake/light_tree_layout.h"
@@ -17,7 +16,9 @@ std::uint32_t bits(float f) {
   return u;
 }
 
-int typeIndex(LightType type) { return type == LightType::Directional ? 0 : type == LightType::Point ? 1 : 2; }
+int typeIndex(LightType type) {
+  return type == LightType::Directional ? 0 : type == LightType::Point ? 1 : 2;
+}
 
 // The intensities the shader decodes: internal, non-empty nodes (leaves are exact).
 std::vector<glm::vec3> decodedIntensities(const std::vector<LightTree>& trees) {
@@ -36,10 +37,12 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
   PackedTrees packed{{}, {0, 0, 0}, {0, 0, 0}, NodeColourCoder(coding, decodedIntensities(trees))};
   std::size_t words = 0;
   for (const LightTree& tree : trees) {
-    words += tree.nodes.size() * (tree.type == LightType::Spot ? layout::kSpotNodeWords : layout::kNodeWords);
+    words += tree.nodes.size() *
+             (tree.type == LightType::Spot ? layout::kSpotNodeWords : layout::kNodeWords);
   }
   words = (words + 3) / 4 * 4;
-  if (words > std::size_t(1) << 31) throw BakeError("the light trees need " + std::to_string(words) + " words, more than 2^31");
+  if (words > std::size_t(1) << 31)
+    throw BakeError("the light trees need " + std::to_string(words) + " words, more than 2^31");
   packed.words.assign(words, 0u);
   std::size_t next = 0;
   for (const LightTree& tree : trees) {
@@ -61,7 +64,8 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
       if (t == 1) w[9] = bits(n.invRange2Max);
       if (t == 2) {
         // 1e-4 rad of margin covers the float rounding of the cone merges.
-        const double theta = std::min(double(n.spread) + double(n.outerAngle) + 1e-4, glm::pi<double>());
+        const double theta =
+            std::min(double(n.spread) + double(n.outerAngle) + 1e-4, glm::pi<double>());
         w[9] = bits(float(std::cos(theta)));
         w[10] = bits(n.axis.x), w[11] = bits(n.axis.y), w[12] = bits(n.axis.z);
         w[13] = bits(float(std::sin(theta)));

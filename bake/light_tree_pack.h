@@ -17,6 +17,7 @@ struct PackedTrees {
 };
 
 // Throws BakeError when the forest needs more than 2^31 words.
-PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding coding = NodeColourCoding::Rgb9e5);
+PackedTrees packLightTrees(const std::vector<LightTree>& trees,
+                           NodeColourCoding coding = NodeColourCoding::Rgb9e5);
 
 }  // namespace manylight

@@ -12,14 +12,17 @@ float largest(glm::vec3 c) { return std::max(c.r, std::max(c.g, c.b)); }
 
 // RGB9_E5 as EXT_texture_shared_exponent defines it.
 constexpr int kMantissaBits = 9, kExponentBias = 15, kMaxExponent = 31;
-constexpr double kRgb9e5Max = double((1 << kMantissaBits) - 1) / (1 << kMantissaBits) * (1 << (kMaxExponent - kExponentBias));
+constexpr double kRgb9e5Max =
+    double((1 << kMantissaBits) - 1) / (1 << kMantissaBits) * (1 << (kMaxExponent - kExponentBias));
 
 std::uint32_t encodeRgb9e5(glm::dvec3 v) {
   for (int c = 0; c < 3; ++c) v[c] = std::clamp(v[c], 0.0, kRgb9e5Max);
   const double m = std::max(v.x, std::max(v.y, v.z));
   if (m <= 0.0) return 0;
   int e = std::max(-kExponentBias - 1, int(std::floor(std::log2(m)))) + 1 + kExponentBias;
-  if (std::floor(m / std::exp2(e - kExponentBias - kMantissaBits) + 0.5) == double(1 << kMantissaBits)) ++e;
+  if (std::floor(m / std::exp2(e - kExponentBias - kMantissaBits) + 0.5) ==
+      double(1 << kMantissaBits))
+    ++e;
   const double unit = std::exp2(e - kExponentBias - kMantissaBits);
   std::uint32_t word = std::uint32_t(e) << 27;
   std::uint32_t codes[3];
@@ -51,13 +54,15 @@ std::uint32_t encodeFitted(glm::dvec3 v, const PowerFit& fit) {
   const double m = std::max(v.x, std::max(v.y, v.z));
   if (!(m > 0.0)) return 0;
   // The exponent that puts the largest channel in the top octave of the codes.
-  const int k = std::clamp(int(std::ceil(std::log2(m / fit(255.0)))), -kExponentOffset, 255 - kExponentOffset);
+  const int k = std::clamp(int(std::ceil(std::log2(m / fit(255.0)))), -kExponentOffset,
+                           255 - kExponentOffset);
   const double unit = std::exp2(k);
   std::uint32_t word = std::uint32_t(k + kExponentOffset) << 24;
   std::uint32_t codes[3];
   for (int c = 0; c < 3; ++c) {
     const double exact = std::pow(std::max(v[c], 0.0) / unit / fit.a, 1.0 / fit.gamma);
-    const double lo = std::clamp(std::floor(exact), 0.0, 255.0), hi = std::clamp(std::ceil(exact), 0.0, 255.0);
+    const double lo = std::clamp(std::floor(exact), 0.0, 255.0),
+                 hi = std::clamp(std::ceil(exact), 0.0, 255.0);
     auto value = [&](double code) { return code == 0.0 ? 0.0 : unit * fit(code); };
     codes[c] = std::uint32_t(std::abs(value(lo) - v[c]) <= std::abs(value(hi) - v[c]) ? lo : hi);
   }
@@ -74,7 +79,8 @@ double percentile99(std::vector<double>& v) {
 
 }  // namespace
 
-NodeColourCoder::NodeColourCoder(NodeColourCoding coding, const std::vector<glm::vec3>& colours) : coding_(coding) {
+NodeColourCoder::NodeColourCoder(NodeColourCoding coding, const std::vector<glm::vec3>& colours)
+    : coding_(coding) {
   if (coding == NodeColourCoding::Fitted) {
     std::vector<FitPair> pairs;
     pairs.reserve(colours.size() * 3);
@@ -93,7 +99,8 @@ NodeColourCoder::NodeColourCoder(NodeColourCoding coding, const std::vector<glm:
     if (!twoCodes) {
       fittedToSrgb_ = true;
       pairs.clear();
-      for (int code = 1; code < 256; ++code) pairs.push_back({double(code), decodeSrgb8(std::uint8_t(code))});
+      for (int code = 1; code < 256; ++code)
+        pairs.push_back({double(code), decodeSrgb8(std::uint8_t(code))});
     }
     fit_ = fitPowerLaw(pairs);
   } else {
@@ -104,7 +111,8 @@ NodeColourCoder::NodeColourCoder(NodeColourCoding coding, const std::vector<glm:
     // clamp the brightest node.
     while (brightest / double(scale_) > kRgb9e5Max) scale_ = std::nextafter(scale_, HUGE_VALF);
   }
-  if (coding == NodeColourCoding::Rgb9e5) slackFloor = std::exp2(-kExponentBias - kMantissaBits) * double(scale_);
+  if (coding == NodeColourCoding::Rgb9e5)
+    slackFloor = std::exp2(-kExponentBias - kMantissaBits) * double(scale_);
   std::vector<double> errors[3];
   for (auto& e : errors) e.reserve(colours.size());
   double eta = 0.0;

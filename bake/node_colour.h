@@ -20,9 +20,8 @@
 // its bounds by it, so the error guarantee holds with compact colours. ζ is one unit of
 // RGB9_E5's smallest exponent (so nodes below its range do not inflate η), 0 for Fitted.
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "bake/colour_fit.h"
 

@@ -2,9 +2,9 @@
 // packed light trees, read back from a baked file (bake/baked_file.h): the whole read, the
 // checksum and every check of the format, nothing rebuilt. Target (issue 7): ≤ 1 s.
 // Run: build/bin/manylight_baked_bench
-#include <filesystem>
-
 #include <benchmark/benchmark.h>
+
+#include <filesystem>
 
 #include "bake/baked_file.h"
 #include "scene/scene_builder.h"

@@ -3,11 +3,11 @@
 // evaluations per covered pixel. Targets (issue 4): at 65,536 lights lightcuts (ε = 0.02)
 // ≥ 100× faster than the reference, and its time at 65,536 lights ≤ 3× its time at 1,024.
 // Run: build/bin/manylight_lightcuts_bench   (the 65,536-light reference frame takes ~40 s)
+#include <benchmark/benchmark.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <map>
-
-#include <benchmark/benchmark.h>
 
 #include "gl/context.h"
 #include "render/render_job.h"
@@ -69,11 +69,21 @@ void renderTime(benchmark::State& state, Method method) {
 }
 
 BENCHMARK_CAPTURE(renderTime, lightcuts, Method::Lightcuts)
-    ->Arg(1024)->Arg(65536)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+    ->Arg(1024)
+    ->Arg(65536)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK_CAPTURE(renderTime, reference, Method::Reference)
-    ->Arg(1024)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+    ->Arg(1024)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK_CAPTURE(renderTime, reference, Method::Reference)
-    ->Arg(65536)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
+    ->Arg(65536)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace
 
@@ -87,9 +97,12 @@ int main(int argc, char** argv) {
   };
   for (int n : {1024, 65536}) {
     const double ref = ms(Method::Reference, n), cut = ms(Method::Lightcuts, n);
-    if (ref > 0.0 && cut > 0.0) std::printf("%d lights: lightcuts %.0f ms, reference %.0f ms, %.1fx faster\n", n, cut, ref, ref / cut);
+    if (ref > 0.0 && cut > 0.0)
+      std::printf("%d lights: lightcuts %.0f ms, reference %.0f ms, %.1fx faster\n", n, cut, ref,
+                  ref / cut);
   }
   const double small = ms(Method::Lightcuts, 1024), large = ms(Method::Lightcuts, 65536);
-  if (small > 0.0 && large > 0.0) std::printf("lightcuts 65,536 / 1,024 lights: %.2fx the time\n", large / small);
+  if (small > 0.0 && large > 0.0)
+    std::printf("lightcuts 65,536 / 1,024 lights: %.2fx the time\n", large / small);
   return 0;
 }

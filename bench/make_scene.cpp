@@ -9,7 +9,9 @@
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: manylight_make_scene OUT.gltf|OUT.glb LIGHTS [SEED] [--point-only] [--specular] [--untextured]\n");
+    std::fprintf(stderr,
+                 "usage: manylight_make_scene OUT.gltf|OUT.glb LIGHTS [SEED] [--point-only] "
+                 "[--specular] [--untextured]\n");
     return 2;
   }
   manylight::RoomOptions o;

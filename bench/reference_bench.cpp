@@ -1,8 +1,8 @@
 // Throughput of the reference method: light evaluations per second at 640×480.
 // Run: build/bin/manylight_bench  (evals_per_s = lights × covered pixels / render time)
-#include <filesystem>
-
 #include <benchmark/benchmark.h>
+
+#include <filesystem>
 
 #include "gl/context.h"
 #include "render/render_job.h"
@@ -52,9 +52,23 @@ void BM_ReferenceMixed(benchmark::State& s) { referenceThroughput(s, false, fals
 void BM_ReferencePoint(benchmark::State& s) { referenceThroughput(s, true, false); }
 void BM_ReferenceMixedSpecular(benchmark::State& s) { referenceThroughput(s, false, true); }
 
-BENCHMARK(BM_ReferenceMixed)->Arg(1)->Arg(512)->Arg(4096)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_ReferencePoint)->Arg(4096)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_ReferenceMixedSpecular)->Arg(4096)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_ReferenceMixed)
+    ->Arg(1)
+    ->Arg(512)
+    ->Arg(4096)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK(BM_ReferencePoint)
+    ->Arg(4096)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
+BENCHMARK(BM_ReferenceMixedSpecular)
+    ->Arg(4096)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 
 }  // namespace
 

@@ -11,7 +11,8 @@ namespace {
 using namespace manylight;
 
 void buildTrees(benchmark::State& state, Split split, bool mixed) {
-  const std::vector<Light> lights = scatteredLights(int(state.range(0)), mixed, 3, {100.0f, 10.0f, 100.0f});
+  const std::vector<Light> lights =
+      scatteredLights(int(state.range(0)), mixed, 3, {100.0f, 10.0f, 100.0f});
   TreeOptions options;
   options.split = split;
   for (auto _ : state) {
@@ -22,11 +23,18 @@ void buildTrees(benchmark::State& state, Split split, bool mixed) {
 }
 
 BENCHMARK_CAPTURE(buildTrees, MetricPoint, Split::Metric, false)
-    ->Arg(1 << 16)->Arg(1 << 20)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1 << 16)
+    ->Arg(1 << 20)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(buildTrees, MetricMixed, Split::Metric, true)
-    ->Arg(1 << 20)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1 << 20)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(buildTrees, LongestAxisPoint, Split::LongestAxis, false)
-    ->Arg(1 << 20)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1 << 20)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

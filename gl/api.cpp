@@ -11,8 +11,8 @@ MANYLIGHT_GL_FUNCTIONS(MANYLIGHT_GL_DEFINE)
 namespace manylight::gl {
 
 const char* loadApi(ProcAddressFn getProcAddress) {
-#define MANYLIGHT_GL_LOAD(type, name)                                      \
-  api::name = reinterpret_cast<type>(getProcAddress(#name));                \
+#define MANYLIGHT_GL_LOAD(type, name)                        \
+  api::name = reinterpret_cast<type>(getProcAddress(#name)); \
   if (!api::name) return #name;
   MANYLIGHT_GL_FUNCTIONS(MANYLIGHT_GL_LOAD)
 #undef MANYLIGHT_GL_LOAD

@@ -29,7 +29,8 @@ Context* Context::current() { return gCurrent; }
 void Context::releasePrograms() { programs_.clear(); }
 
 const Program& Context::program(std::string_view vertex, std::string_view fragment,
-                                const std::vector<std::string>& defines, const std::vector<std::string>& outputs) {
+                                const std::vector<std::string>& defines,
+                                const std::vector<std::string>& outputs) {
   std::string key = std::string(vertex) + "|" + std::string(fragment);
   for (const std::string& d : defines) key += "|" + d;
   key += "|>";
@@ -46,7 +47,8 @@ const Program& Context::program(std::string_view vertex, std::string_view fragme
   return *slot;
 }
 
-const Program& cachedProgram(std::string_view vertex, std::string_view fragment, const std::vector<std::string>& defines,
+const Program& cachedProgram(std::string_view vertex, std::string_view fragment,
+                             const std::vector<std::string>& defines,
                              const std::vector<std::string>& outputs) {
   if (!gCurrent) throw GlError("no OpenGL context to compile " + std::string(fragment) + " in");
   return gCurrent->program(vertex, fragment, defines, outputs);

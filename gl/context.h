@@ -39,7 +39,8 @@ class Context {
   // The program of gl::Program's constructor, compiled once per context and kept until the
   // context ends, so renderers created one after another (a batch of thumbnails) do not
   // compile the same variant again. Throws GlError.
-  const Program& program(std::string_view vertex, std::string_view fragment, const std::vector<std::string>& defines,
+  const Program& program(std::string_view vertex, std::string_view fragment,
+                         const std::vector<std::string>& defines,
                          const std::vector<std::string>& outputs);
 
   // The context created last and still alive (a process has one), or null.
@@ -58,13 +59,15 @@ class Context {
 };
 
 // Context::current()->program(...); throws GlError when there is no context.
-const Program& cachedProgram(std::string_view vertex, std::string_view fragment, const std::vector<std::string>& defines,
+const Program& cachedProgram(std::string_view vertex, std::string_view fragment,
+                             const std::vector<std::string>& defines,
                              const std::vector<std::string>& outputs);
 
 // Creates a context. Auto tries EGL device → EGL surfaceless (Mesa) → OSMesa and keeps
 // the first that works; each attempt's outcome is appended to `attempts` (for --verbose).
 // Throws GlError with every attempt's reason when none works.
-std::unique_ptr<Context> createContext(Backend backend, std::vector<std::string>* attempts = nullptr);
+std::unique_ptr<Context> createContext(Backend backend,
+                                       std::vector<std::string>* attempts = nullptr);
 
 // One per platform file.
 std::unique_ptr<Context> createOSMesaContext();

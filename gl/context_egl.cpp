@@ -15,16 +15,26 @@ namespace {
 std::string eglErrorName() {
   const EGLint e = eglGetError();
   switch (e) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    case EGL_SUCCESS:
+      return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
     default: {
       char buf[32];
       std::snprintf(buf, sizeof buf, "EGL error 0x%04X", unsigned(e));
@@ -46,9 +56,11 @@ bool hasExtension(const char* list, const char* name) {
 
 class EglContextImpl final : public Context {
  public:
-  EglContextImpl(const std::string& backend, EGLDisplay display) : Context(backend), display_(display) {
+  EglContextImpl(const std::string& backend, EGLDisplay display)
+      : Context(backend), display_(display) {
     const std::string where = backend + ": ";
-    if (display_ == EGL_NO_DISPLAY) throw GlError(where + "no EGL display (" + eglErrorName() + ")");
+    if (display_ == EGL_NO_DISPLAY)
+      throw GlError(where + "no EGL display (" + eglErrorName() + ")");
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display_, &major, &minor)) {
       throw GlError(where + "eglInitialize failed (" + eglErrorName() + ")");
@@ -82,8 +94,12 @@ class EglContextImpl final : public Context {
         throw GlError(where + "no EGL config for OpenGL (" + eglErrorName() + ")");
       }
     }
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                              3,
+                              EGL_CONTEXT_MINOR_VERSION,
+                              3,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                               EGL_NONE};
     context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attribs);
     if (context_ == EGL_NO_CONTEXT) {
@@ -124,7 +140,8 @@ std::unique_ptr<Context> createEglDeviceContext() {
   }
   auto queryDevices = clientProc<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT", backend);
   auto queryString = clientProc<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT", backend);
-  auto getDisplay = clientProc<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT", backend);
+  auto getDisplay =
+      clientProc<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT", backend);
   EGLint count = 0;
   if (!queryDevices(0, nullptr, &count) || count <= 0) {
     throw GlError(backend + ": no EGL devices (" + eglErrorName() + ")");
@@ -142,7 +159,8 @@ std::unique_ptr<Context> createEglDeviceContext() {
   std::string reasons;
   for (EGLDeviceEXT d : ordered) {
     try {
-      return std::make_unique<EglContextImpl>(backend, getDisplay(EGL_PLATFORM_DEVICE_EXT, d, nullptr));
+      return std::make_unique<EglContextImpl>(backend,
+                                              getDisplay(EGL_PLATFORM_DEVICE_EXT, d, nullptr));
     } catch (const GlError& e) {
       reasons += (reasons.empty() ? "" : "; ") + std::string(e.what());
     }
@@ -156,7 +174,8 @@ std::unique_ptr<Context> createEglSurfacelessContext() {
   if (!hasExtension(clientExts, "EGL_MESA_platform_surfaceless")) {
     throw GlError(backend + ": EGL_MESA_platform_surfaceless is not supported");
   }
-  auto getDisplay = clientProc<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT", backend);
+  auto getDisplay =
+      clientProc<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT", backend);
   return std::make_unique<EglContextImpl>(
       backend, getDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
 }

@@ -35,19 +35,35 @@ class Handle {
 };
 
 struct TextureTraits {
-  static GLuint create() { GLuint id = 0; api::glGenTextures(1, &id); return id; }
+  static GLuint create() {
+    GLuint id = 0;
+    api::glGenTextures(1, &id);
+    return id;
+  }
   static void destroy(GLuint id) { api::glDeleteTextures(1, &id); }
 };
 struct BufferTraits {
-  static GLuint create() { GLuint id = 0; api::glGenBuffers(1, &id); return id; }
+  static GLuint create() {
+    GLuint id = 0;
+    api::glGenBuffers(1, &id);
+    return id;
+  }
   static void destroy(GLuint id) { api::glDeleteBuffers(1, &id); }
 };
 struct FramebufferTraits {
-  static GLuint create() { GLuint id = 0; api::glGenFramebuffers(1, &id); return id; }
+  static GLuint create() {
+    GLuint id = 0;
+    api::glGenFramebuffers(1, &id);
+    return id;
+  }
   static void destroy(GLuint id) { api::glDeleteFramebuffers(1, &id); }
 };
 struct VertexArrayTraits {
-  static GLuint create() { GLuint id = 0; api::glGenVertexArrays(1, &id); return id; }
+  static GLuint create() {
+    GLuint id = 0;
+    api::glGenVertexArrays(1, &id);
+    return id;
+  }
   static void destroy(GLuint id) { api::glDeleteVertexArrays(1, &id); }
 };
 struct ShaderTraits {

@@ -6,12 +6,13 @@ namespace manylight::gl {
 
 using namespace api;
 
-TextureBuffer uploadTextureBuffer(const void* data, std::size_t texels, GLenum format, const std::string& what) {
+TextureBuffer uploadTextureBuffer(const void* data, std::size_t texels, GLenum format,
+                                  const std::string& what) {
   GLint maxTexels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
   if (texels > std::size_t(maxTexels)) {
-    throw GlError(what + " need " + std::to_string(texels) + " texels, the driver's texture buffers hold " +
-                  std::to_string(maxTexels));
+    throw GlError(what + " need " + std::to_string(texels) +
+                  " texels, the driver's texture buffers hold " + std::to_string(maxTexels));
   }
   TextureBuffer t;
   glBindBuffer(GL_TEXTURE_BUFFER, t.buffer.id());

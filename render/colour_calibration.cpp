@@ -8,10 +8,11 @@
 
 namespace manylight {
 
-ColourCalibration calibrateColour(const Scene& scene, int firstCode, int lastCode, int width, int height) {
+ColourCalibration calibrateColour(const Scene& scene, int firstCode, int lastCode, int width,
+                                  int height) {
   if (firstCode < 1 || lastCode > 255 || firstCode >= lastCode) {
-    throw Error("calibration codes must satisfy 1 <= first < last <= 255, got " + std::to_string(firstCode) + ".." +
-                std::to_string(lastCode));
+    throw Error("calibration codes must satisfy 1 <= first < last <= 255, got " +
+                std::to_string(firstCode) + ".." + std::to_string(lastCode));
   }
   RenderRequest request;
   request.width = width;
@@ -34,7 +35,8 @@ ColourCalibration calibrateColour(const Scene& scene, int firstCode, int lastCod
     }
     const double mean = covered > 0 ? sum / double(covered) : 0.0;
     if (!(mean > 0.0)) {
-      throw Error(scene.name + ": the calibration probe (light " + (scene.lights.empty() ? "of the default rig" : "0") +
+      throw Error(scene.name + ": the calibration probe (light " +
+                  (scene.lights.empty() ? "of the default rig" : "0") +
                   ") lights nothing the camera sees at code " + std::to_string(code));
     }
     c.pairs.push_back({double(code), mean});

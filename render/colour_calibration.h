@@ -29,7 +29,7 @@ inline constexpr int kFirstCalibrationCode = 11;
 // the thumbnail framing), and fits the mean radiance of the covered pixels. Needs a current
 // context. Throws Error when the probe lights nothing or fewer than two codes are asked for,
 // gl::GlError on a driver error.
-ColourCalibration calibrateColour(const Scene& scene, int firstCode = kFirstCalibrationCode, int lastCode = 255,
-                                  int width = 64, int height = 64);
+ColourCalibration calibrateColour(const Scene& scene, int firstCode = kFirstCalibrationCode,
+                                  int lastCode = 255, int width = 64, int height = 64);
 
 }  // namespace manylight

@@ -37,7 +37,8 @@ GBuffer::GBuffer(int width, int height) : width_(width), height_(height) {
   glBindFramebuffer(GL_FRAMEBUFFER, geometry_.id());
   GLenum buffers[kTargetCount];
   for (int i = 0; i < kTargetCount; ++i) {
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, targets_[i].id(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D,
+                           targets_[i].id(), 0);
     buffers[i] = GL_COLOR_ATTACHMENT0 + i;
   }
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_.id(), 0);
@@ -45,7 +46,8 @@ GBuffer::GBuffer(int width, int height) : width_(width), height_(height) {
   checkComplete("G-buffer");
 
   glBindFramebuffer(GL_FRAMEBUFFER, lighting_.id());
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, targets_[kRadiance].id(), 0);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                         targets_[kRadiance].id(), 0);
   const GLenum one = GL_COLOR_ATTACHMENT0;
   glDrawBuffers(1, &one);
   glReadBuffer(GL_COLOR_ATTACHMENT0);

@@ -4,8 +4,8 @@
 
 #include "bake/light_pack.h"
 #include "bake/light_texture_layout.h"
-#include "gl/texture_buffer.h"
 #include "gl/context.h"
+#include "gl/texture_buffer.h"
 #include "render/image.h"
 #include "scene/shading_model.h"
 
@@ -41,7 +41,8 @@ gl::Texture uploadTexture(const Texture& t) {
     linear[i] = (i % 4 == 3) ? t.rgba[i] / 255.0f : kLinear[t.rgba[i]];
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, t.width, t.height, 0, GL_RGBA, GL_FLOAT, linear.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, t.width, t.height, 0, GL_RGBA, GL_FLOAT,
+               linear.data());
   auto wrap = [](bool repeat, bool mirror) {
     return GLint(mirror ? GL_MIRRORED_REPEAT : repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
   };
@@ -105,7 +106,8 @@ void GpuScene::replaceLights(const std::vector<Light>& lights) {
   packed.resize(texels * 4, 0.0f);
   pointStart_ = packedLights.pointStart;
   spotStart_ = packedLights.spotStart;
-  lightTexture_ = gl::uploadTextureBuffer(packed.data(), texels, GL_RGBA32F, std::to_string(lights.size()) + " lights");
+  lightTexture_ = gl::uploadTextureBuffer(packed.data(), texels, GL_RGBA32F,
+                                          std::to_string(lights.size()) + " lights");
   lightCount_ = int(lights.size());
 }
 

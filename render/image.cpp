@@ -4,8 +4,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "scene/output_file.h"
 #include "scene/image_io.h"
+#include "scene/output_file.h"
 
 namespace manylight {
 
@@ -32,8 +32,9 @@ void writeImage(const Image& image, const std::string& path, float exposure) {
     RawImage<std::uint8_t> codes{image.width, image.height, 4, std::vector<std::uint8_t>(n * 4)};
     for (std::size_t i = 0; i < n * 4; ++i) {
       // Alpha is coverage, not a colour: linear, not encoded.
-      codes.pixels[i] = (i % 4 == 3) ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
-                                     : encodeSrgb8(image.rgba[i] * scale);
+      codes.pixels[i] =
+          (i % 4 == 3) ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
+                       : encodeSrgb8(image.rgba[i] * scale);
     }
     ok = imageIo().writeSrgb8(tmp.c_str(), codes, &reason);
   } else {
@@ -60,13 +61,14 @@ Image readImage(const std::string& path) {
   img.height = raw.height;
   img.rgba.assign(std::size_t(img.width) * img.height * 4, 1.0f);
   for (std::size_t i = 0, n = std::size_t(img.width) * img.height; i < n; ++i) {
-    for (int c = 0; c < std::min(raw.channels, 4); ++c) img.rgba[i * 4 + c] = raw.pixels[i * raw.channels + c];
+    for (int c = 0; c < std::min(raw.channels, 4); ++c)
+      img.rgba[i * 4 + c] = raw.pixels[i * raw.channels + c];
   }
   return img;
 }
 
-CompareOutcome compareImageFiles(const std::string& a, const std::string& b, const CompareThresholds& thresholds,
-                                 const std::string& diffPath) {
+CompareOutcome compareImageFiles(const std::string& a, const std::string& b,
+                                 const CompareThresholds& thresholds, const std::string& diffPath) {
   for (const std::string& path : {a, b}) {
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
@@ -76,17 +78,20 @@ CompareOutcome compareImageFiles(const std::string& a, const std::string& b, con
   }
   CompareOutcome out;
   std::string reason;
-  if (!imageIo().compareFiles(a.c_str(), b.c_str(), thresholds.maxAbs, nullptr, 0.0, &out.values, &reason)) {
+  if (!imageIo().compareFiles(a.c_str(), b.c_str(), thresholds.maxAbs, nullptr, 0.0, &out.values,
+                              &reason)) {
     throw ImageError(reason);
   }
   const ImageComparison& v = out.values;
   out.passed = v.sameShape && double(v.failing) <= thresholds.maxFraction * double(v.values);
   if (out.passed || !v.sameShape || diffPath.empty()) return out;
-  if (fs::path(diffPath).extension() != ".png") throw ImageError(diffPath + ": the difference image must be a .png");
+  if (fs::path(diffPath).extension() != ".png")
+    throw ImageError(diffPath + ": the difference image must be a .png");
   const fs::path tmp = prepareTemporaryFor(diffPath);
   const double scale = thresholds.maxAbs > 0.0 ? 0.5 / thresholds.maxAbs : 127.5;
   ImageComparison again;
-  if (!imageIo().compareFiles(a.c_str(), b.c_str(), thresholds.maxAbs, tmp.c_str(), scale, &again, &reason)) {
+  if (!imageIo().compareFiles(a.c_str(), b.c_str(), thresholds.maxAbs, tmp.c_str(), scale, &again,
+                              &reason)) {
     std::error_code ec;
     fs::remove(tmp, ec);
     throw ImageError(diffPath + ": cannot write the difference image: " + reason);

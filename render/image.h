@@ -7,7 +7,7 @@
 
 #include "scene/error.h"
 #include "scene/image_io_module.h"  // ImageComparison
-#include "scene/srgb.h"  // the PNG encoding
+#include "scene/srgb.h"             // the PNG encoding
 
 namespace manylight {
 
@@ -54,7 +54,7 @@ struct CompareOutcome {
 // `diffPath` is not empty, writes the difference there (|a − b| / (2·maxAbs), clamped, as an
 // 8-bit PNG: values at the threshold show mid-grey; with maxAbs 0, one 8-bit code does),
 // through a temporary file. Throws ImageError when a file cannot be read or written.
-CompareOutcome compareImageFiles(const std::string& a, const std::string& b, const CompareThresholds& thresholds,
-                                 const std::string& diffPath);
+CompareOutcome compareImageFiles(const std::string& a, const std::string& b,
+                                 const CompareThresholds& thresholds, const std::string& diffPath);
 
 }  // namespace manylight

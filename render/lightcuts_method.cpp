@@ -12,10 +12,14 @@ using namespace gl::api;
 
 LightcutsMethod::LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
                                  const TreeOptions& options, bool distance)
-    : LightcutsMethod(packLightTrees(buildLightTrees(lights, options), options.nodeColour), gbuffer, distance) {}
+    : LightcutsMethod(packLightTrees(buildLightTrees(lights, options), options.nodeColour), gbuffer,
+                      distance) {}
 
 LightcutsMethod::LightcutsMethod(PackedTrees packed, const GBuffer& gbuffer, bool distance)
-    : layout_(std::move(packed)), distance_(distance), width_(gbuffer.width()), height_(gbuffer.height()) {
+    : layout_(std::move(packed)),
+      distance_(distance),
+      width_(gbuffer.width()),
+      height_(gbuffer.height()) {
   std::vector<std::uint32_t>& words = layout_.words;
   const std::size_t nodeWords = words.size();
   if (words.empty()) words.assign(4, 0u);  // no lights: keep the sampler complete
@@ -41,7 +45,8 @@ LightcutsMethod::LightcutsMethod(PackedTrees packed, const GBuffer& gbuffer, boo
 }
 
 const gl::Program& LightcutsMethod::program(const std::vector<std::string>& defines) const {
-  return gl::cachedProgram("fullscreen.vert", "lighting_lightcuts.frag", defines, {"oRadiance", "oCutStats"});
+  return gl::cachedProgram("fullscreen.vert", "lighting_lightcuts.frag", defines,
+                           {"oRadiance", "oCutStats"});
 }
 
 void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
@@ -63,7 +68,8 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   glBindTexture(GL_TEXTURE_BUFFER, nodes_.texture.id());
   glUniform1i(shader.uniform("uNodes"), 5);
   glUniform3i(shader.uniform("uTreeBase"), layout_.base[0], layout_.base[1], layout_.base[2]);
-  glUniform3i(shader.uniform("uTreeLeaves"), layout_.leaves[0], layout_.leaves[1], layout_.leaves[2]);
+  glUniform3i(shader.uniform("uTreeLeaves"), layout_.leaves[0], layout_.leaves[1],
+              layout_.leaves[2]);
   if (colour.coding() == NodeColourCoding::Rgb9e5) {
     glUniform1f(shader.uniform("uColourScale"), colour.scale());
   } else {

@@ -17,10 +17,10 @@ namespace manylight {
 enum class ErrorMode { Node, Total };
 
 struct LightcutsSettings {
-  float error = 0.02f;    // ε
+  float error = 0.02f;  // ε
   ErrorMode mode = ErrorMode::Node;
-  int maxCut = 1000;      // nodes per cut; at most kMaxCutLimit
-  TreeOptions trees;      // how the trees are built and packed (used when they are built)
+  int maxCut = 1000;  // nodes per cut; at most kMaxCutLimit
+  TreeOptions trees;  // how the trees are built and packed (used when they are built)
 };
 
 // llvmpipe ends a shader invocation's loops after 65,535 iterations in all, and a pass
@@ -34,8 +34,8 @@ struct CutStats {
   double averageCut = 0.0;
   int maxCut = 0;
   long long pixelsAtMaxCut = 0;
-  double lightEvaluations = 0.0;  // per pixel
-  double nodeEvaluations = 0.0;   // per pixel (error bounds or distance tests)
+  double lightEvaluations = 0.0;       // per pixel
+  double nodeEvaluations = 0.0;        // per pixel (error bounds or distance tests)
   std::vector<std::uint8_t> atMaxCut;  // per pixel, rows top-down: 1 where the cut hit the maximum
 };
 
@@ -44,8 +44,8 @@ class LightcutsMethod {
   // Builds the trees of `lights` and uploads them; needs a current context. Throws
   // gl::GlError when the driver cannot hold them.
   // `distance`: cut by the distance criterion (lightcuts-distance) instead of error bounds.
-  LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer, const TreeOptions& options,
-                  bool distance);
+  LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
+                  const TreeOptions& options, bool distance);
   // Uploads trees built and packed before (a baked scene): nothing is rebuilt.
   LightcutsMethod(PackedTrees packed, const GBuffer& gbuffer, bool distance);
 

@@ -1,7 +1,6 @@
 #include "render/playback.h"
 
 #include <cmath>
-
 #include <glm/gtc/constants.hpp>
 
 #include "scene/camera_animation.h"
@@ -23,8 +22,9 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
   const float sweep = glm::radians(request.orbitDegrees);
   out.animated = !start.animation.chain.empty();
   const int frames = request.frames > 0 ? request.frames
-                     : out.animated     ? int(std::floor(start.animation.duration * request.fps + 1e-3f)) + 1
-                                        : 120;
+                     : out.animated
+                         ? int(std::floor(start.animation.duration * request.fps + 1e-3f)) + 1
+                         : 120;
   for (int i = 0; i < frames; ++i) {
     if (stop && stop->load()) break;
     Camera camera = start;

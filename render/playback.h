@@ -12,8 +12,8 @@
 namespace manylight {
 
 struct PlaybackRequest {
-  RenderRequest frame;      // size, camera, method, lights, prebuilt trees
-  int frames = 0;  // 0: the animation's length at `fps` (to its last key), or 120 for an orbit
+  RenderRequest frame;  // size, camera, method, lights, prebuilt trees
+  int frames = 0;       // 0: the animation's length at `fps` (to its last key), or 120 for an orbit
   float fps = 30.0f;
   float orbitDegrees = 360.0f;  // swept over all frames (frame i at i/frames of it)
 };

@@ -23,7 +23,8 @@ const gl::Program& ReferenceMethod::program(const std::vector<std::string>& defi
 }
 
 int ReferenceMethod::lightsPerPass(int pixels) {
-  return int(std::clamp<long long>(kEvaluationsPerPass / std::max(pixels, 1), 1, kMaxLightsPerPass));
+  return int(
+      std::clamp<long long>(kEvaluationsPerPass / std::max(pixels, 1), 1, kMaxLightsPerPass));
 }
 
 int ReferenceMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,

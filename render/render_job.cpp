@@ -7,8 +7,8 @@ namespace manylight {
 
 Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* framed) {
   if (request.camera >= int(scene.cameras.size())) {
-    throw Error(scene.name + ": camera " + std::to_string(request.camera) + " does not exist (the scene has " +
-                std::to_string(scene.cameras.size()) + ")");
+    throw Error(scene.name + ": camera " + std::to_string(request.camera) +
+                " does not exist (the scene has " + std::to_string(scene.cameras.size()) + ")");
   }
   if (framed) *framed = scene.cameras.empty();
   if (scene.cameras.empty()) return frameBounds(scene.bounds(), request.width, request.height);
@@ -20,8 +20,9 @@ PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
   if (defaultRig) rig = defaultLightRig(camera);
   const std::vector<Light>& lights = defaultRig ? rig : scene.lights;
   lightCount = lights.size();
-  renderer = std::make_unique<Renderer>(scene, lights, request.width, request.height, request.method,
-                                        request.lightcuts.trees, defaultRig ? nullptr : request.prebuiltTrees);
+  renderer = std::make_unique<Renderer>(scene, lights, request.width, request.height,
+                                        request.method, request.lightcuts.trees,
+                                        defaultRig ? nullptr : request.prebuiltTrees);
   settings.ambient = request.ambient;
   settings.lightsPerPass = request.lightsPerPass;
   settings.lightcuts = request.lightcuts;
@@ -35,20 +36,24 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   out.lightCount = p.lightCount;
   out.bakeMs = p.renderer->bakeMs();
   if (p.renderer->lightcuts()) out.nodeColour = p.renderer->lightcuts()->nodeColour();
-  out.image = p.renderer->render(makeView(p.camera, request.width, request.height), p.settings, &out.frame);
+  out.image =
+      p.renderer->render(makeView(p.camera, request.width, request.height), p.settings, &out.frame);
   return out;
 }
 
-std::vector<Thumbnail> planThumbnails(const std::vector<std::string>& scenes, const std::string& outDir,
-                                      const std::string& format, Shard shard) {
+std::vector<Thumbnail> planThumbnails(const std::vector<std::string>& scenes,
+                                      const std::string& outDir, const std::string& format,
+                                      Shard shard) {
   std::vector<Thumbnail> jobs;
   std::map<std::string, std::string> writer;  // output → the scene that writes it
   for (std::size_t i = std::size_t(shard.index); i < scenes.size(); i += std::size_t(shard.count)) {
-    const std::string output =
-        (std::filesystem::path(outDir) / (std::filesystem::path(scenes[i]).stem().string() + "." + format)).string();
+    const std::string output = (std::filesystem::path(outDir) /
+                                (std::filesystem::path(scenes[i]).stem().string() + "." + format))
+                                   .string();
     const auto [it, added] = writer.emplace(output, scenes[i]);
     if (!added) {
-      throw Error(scenes[i] + ": would write " + output + ", as " + it->second + " does; give scenes distinct names");
+      throw Error(scenes[i] + ": would write " + output + ", as " + it->second +
+                  " does; give scenes distinct names");
     }
     jobs.push_back({scenes[i], output});
   }

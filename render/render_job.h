@@ -27,7 +27,7 @@ struct RenderOutcome {
   bool framed = false;      // no camera: the thumbnail framing of scene/camera.h was used
   bool defaultRig = false;  // no lights: the default rig of scene/camera.h was used
   std::size_t lightCount = 0;
-  double bakeMs = 0.0;  // light trees built and uploaded (lightcuts methods)
+  double bakeMs = 0.0;         // light trees built and uploaded (lightcuts methods)
   NodeColourCoder nodeColour;  // lightcuts methods: how node colours were coded, and the error
 };
 
@@ -63,7 +63,8 @@ struct Thumbnail {
 };
 // Scenes index, index + count, ... of `scenes` (in the order given), each to
 // outDir/STEM.format. Throws Error when two of them would write the same file.
-std::vector<Thumbnail> planThumbnails(const std::vector<std::string>& scenes, const std::string& outDir,
-                                      const std::string& format, Shard shard);
+std::vector<Thumbnail> planThumbnails(const std::vector<std::string>& scenes,
+                                      const std::string& outDir, const std::string& format,
+                                      Shard shard);
 
 }  // namespace manylight

@@ -4,7 +4,6 @@
 #include <cassert>
 #include <chrono>
 #include <cstdio>
-
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/context.h"
@@ -22,9 +21,12 @@ Method parseMethod(const std::string& name) {
 
 const char* methodName(Method m) {
   switch (m) {
-    case Method::Lightcuts: return "lightcuts";
-    case Method::LightcutsDistance: return "lightcuts-distance";
-    default: return "reference";
+    case Method::Lightcuts:
+      return "lightcuts";
+    case Method::LightcutsDistance:
+      return "lightcuts-distance";
+    default:
+      return "reference";
   }
 }
 
@@ -36,10 +38,11 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
       geometry_(gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {},
                                   {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"})) {
   const gl::Program& p = geometry_;
-  uniforms_ = {p.uniform("uViewProjection"), p.uniform("uAmbient"), p.uniform("uBaseColorTexture"),
-               p.uniform("uModel"), p.uniform("uNormalMatrix"), p.uniform("uBaseColorFactor"),
-               p.uniform("uMetallic"), p.uniform("uRoughness"), p.uniform("uEmissive"),
-               p.uniform("uHasTexture"), p.uniform("uDoubleSided"), p.uniform("uMirrored")};
+  uniforms_ = {
+      p.uniform("uViewProjection"), p.uniform("uAmbient"),      p.uniform("uBaseColorTexture"),
+      p.uniform("uModel"),          p.uniform("uNormalMatrix"), p.uniform("uBaseColorFactor"),
+      p.uniform("uMetallic"),       p.uniform("uRoughness"),    p.uniform("uEmissive"),
+      p.uniform("uHasTexture"),     p.uniform("uDoubleSided"),  p.uniform("uMirrored")};
   if (method != Method::Reference) {
     glFinish();
     const auto start = std::chrono::steady_clock::now();
@@ -47,7 +50,8 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
     lightcuts_ = prebuilt ? std::make_unique<LightcutsMethod>(*prebuilt, gbuffer_, distance)
                           : std::make_unique<LightcutsMethod>(lights, gbuffer_, trees, distance);
     glFinish();
-    bakeMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    bakeMs_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 }
 

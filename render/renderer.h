@@ -23,7 +23,7 @@ const char* methodName(Method m);
 
 struct FrameSettings {
   glm::vec3 ambient{0.0f};
-  int lightsPerPass = 0;  // 0: ReferenceMethod::lightsPerPass(pixels)
+  int lightsPerPass = 0;        // 0: ReferenceMethod::lightsPerPass(pixels)
   LightcutsSettings lightcuts;  // the lightcuts methods
   bool readCutStats = true;     // lightcuts: read the per-pixel cut statistics back into FrameStats
 };
@@ -58,8 +58,8 @@ class Renderer {
 
   // Uniform locations of the G-buffer program, looked up once.
   struct GeometryUniforms {
-    GLint viewProjection, ambient, baseColorTexture, model, normalMatrix, baseColorFactor,
-        metallic, roughness, emissive, hasTexture, doubleSided, mirrored;
+    GLint viewProjection, ambient, baseColorTexture, model, normalMatrix, baseColorFactor, metallic,
+        roughness, emissive, hasTexture, doubleSided, mirrored;
   };
 
   const Scene& scene_;

@@ -41,14 +41,17 @@ std::string AssetFiles::check(const std::string& path, fs::path* resolved) const
   }
   const std::string quoted = "URI '" + uri + "'";
   const std::string scheme = schemeOf(uri);
-  if (!scheme.empty()) return quoted + ": scheme '" + scheme + "' is not allowed (only data: URIs and relative paths)";
-  if (!uri.empty() && (uri[0] == '/' || uri[0] == '\\')) return quoted + ": absolute paths are not allowed";
+  if (!scheme.empty())
+    return quoted + ": scheme '" + scheme + "' is not allowed (only data: URIs and relative paths)";
+  if (!uri.empty() && (uri[0] == '/' || uri[0] == '\\'))
+    return quoted + ": absolute paths are not allowed";
   const fs::path relative = fs::path(uri).lexically_normal();
   if (relative.empty() || *relative.begin() == "..") return quoted + ": leaves the scene's folder";
   const fs::path target = fs::weakly_canonical(root_ / relative, ec);
   if (ec) return quoted + ": " + ec.message();
   const fs::path inside = target.lexically_relative(root_);
-  if (inside.empty() || *inside.begin() == "..") return quoted + ": leads outside the scene's folder (through a link)";
+  if (inside.empty() || *inside.begin() == "..")
+    return quoted + ": leads outside the scene's folder (through a link)";
   *resolved = target;
   return "";
 }
@@ -67,7 +70,8 @@ bool AssetFiles::read(std::vector<unsigned char>* out, std::string* err, const s
   bool missing = false;
   if (reason.empty()) {
     const std::string what =
-        path == scene_ ? std::string("scene") : "URI '" + path.substr(base_.empty() ? 0 : base_.size() + 1) + "'";
+        path == scene_ ? std::string("scene")
+                       : "URI '" + path.substr(base_.empty() ? 0 : base_.size() + 1) + "'";
     if (!fs::exists(resolved, ec)) {
       reason = what + ": no such file";
       missing = true;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace manylight {
@@ -17,7 +16,8 @@ View makeView(const Camera& camera, int width, int height) {
   if (camera.orthographic) {
     // Keep ymag; widen or narrow x to the image's aspect.
     const float ymag = std::abs(camera.ymag);
-    v.projection = glm::ortho(-ymag * aspect, ymag * aspect, -ymag, ymag, camera.znear, camera.zfar);
+    v.projection =
+        glm::ortho(-ymag * aspect, ymag * aspect, -ymag, ymag, camera.znear, camera.zfar);
   } else if (camera.zfar > camera.znear) {
     v.projection = glm::perspective(camera.yfov, aspect, camera.znear, camera.zfar);
   } else {
@@ -62,13 +62,15 @@ std::vector<Light> defaultLightRig(const Camera& camera) {
     glm::vec3 towardsLight;  // camera space: +X right, +Y up, +Z towards the viewer
     float lux;
   };
-  const Rig rig[] = {{{-0.4f, 0.6f, 0.7f}, 3.0f}, {{0.8f, 0.1f, 0.6f}, 1.0f}, {{0.0f, 0.5f, -0.85f}, 1.5f}};
+  const Rig rig[] = {
+      {{-0.4f, 0.6f, 0.7f}, 3.0f}, {{0.8f, 0.1f, 0.6f}, 1.0f}, {{0.0f, 0.5f, -0.85f}, 1.5f}};
   std::vector<Light> lights;
   for (const Rig& r : rig) {
     Light l;
     l.type = LightType::Directional;
     l.intensity = r.lux;
-    l.direction = -glm::normalize(glm::vec3(camera.world * glm::vec4(glm::normalize(r.towardsLight), 0.0f)));
+    l.direction =
+        -glm::normalize(glm::vec3(camera.world * glm::vec4(glm::normalize(r.towardsLight), 0.0f)));
     lights.push_back(l);
   }
   return lights;

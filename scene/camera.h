@@ -8,9 +8,9 @@ namespace manylight {
 
 // What a render needs of a camera at a given image size.
 struct View {
-  glm::mat4 view{1.0f};        // world → camera
-  glm::mat4 projection{1.0f};  // camera → clip (OpenGL conventions)
-  glm::vec3 eye{0.0f};         // world-space position (perspective)
+  glm::mat4 view{1.0f};                  // world → camera
+  glm::mat4 projection{1.0f};            // camera → clip (OpenGL conventions)
+  glm::vec3 eye{0.0f};                   // world-space position (perspective)
   glm::vec3 forward{0.0f, 0.0f, -1.0f};  // world-space viewing direction
   bool orthographic = false;
 };

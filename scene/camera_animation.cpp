@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -13,7 +12,8 @@ namespace {
 
 int components(const AnimationTrack& t) { return t.path == AnimationTrack::Rotation ? 4 : 3; }
 
-glm::vec4 key(const AnimationTrack& t, std::size_t k, int part) {  // part: 0 in-tangent, 1 value, 2 out-tangent
+glm::vec4 key(const AnimationTrack& t, std::size_t k,
+              int part) {  // part: 0 in-tangent, 1 value, 2 out-tangent
   const int n = components(t);
   const std::size_t stride = t.interpolation == AnimationTrack::CubicSpline ? 3 : 1;
   const std::size_t at = (k * stride + (stride == 3 ? std::size_t(part) : 0)) * std::size_t(n);
@@ -26,7 +26,8 @@ glm::vec4 sample(const AnimationTrack& t, float seconds) {
   const std::size_t keys = t.times.size();
   if (seconds <= t.times.front() || keys == 1) return key(t, 0, 1);
   if (seconds >= t.times.back()) return key(t, keys - 1, 1);
-  const std::size_t k1 = std::size_t(std::upper_bound(t.times.begin(), t.times.end(), seconds) - t.times.begin());
+  const std::size_t k1 =
+      std::size_t(std::upper_bound(t.times.begin(), t.times.end(), seconds) - t.times.begin());
   const std::size_t k0 = k1 - 1;
   const float dt = t.times[k1] - t.times[k0];
   const float u = (seconds - t.times[k0]) / dt;
@@ -35,14 +36,16 @@ glm::vec4 sample(const AnimationTrack& t, float seconds) {
       return key(t, k0, 1);
     case AnimationTrack::CubicSpline: {
       const float u2 = u * u, u3 = u2 * u;
-      const glm::vec4 v = (2 * u3 - 3 * u2 + 1) * key(t, k0, 1) + dt * (u3 - 2 * u2 + u) * key(t, k0, 2) +
+      const glm::vec4 v = (2 * u3 - 3 * u2 + 1) * key(t, k0, 1) +
+                          dt * (u3 - 2 * u2 + u) * key(t, k0, 2) +
                           (-2 * u3 + 3 * u2) * key(t, k1, 1) + dt * (u3 - u2) * key(t, k1, 0);
       return v;
     }
     default:
       if (t.path == AnimationTrack::Rotation) {
         const glm::vec4 a = key(t, k0, 1), b = key(t, k1, 1);
-        const glm::quat q = glm::slerp(glm::quat(a.w, a.x, a.y, a.z), glm::quat(b.w, b.x, b.y, b.z), u);
+        const glm::quat q =
+            glm::slerp(glm::quat(a.w, a.x, a.y, a.z), glm::quat(b.w, b.x, b.y, b.z), u);
         return {q.x, q.y, q.z, q.w};
       }
       return glm::mix(key(t, k0, 1), key(t, k1, 1), u);
@@ -62,7 +65,8 @@ glm::mat4 local(const AnimatedNode& n, float seconds) {
   glm::quat q(rotation.w, rotation.x, rotation.y, rotation.z);
   const float len = glm::length(q);
   q = len > 0.0f ? q / len : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
-  return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(q) * glm::scale(glm::mat4(1.0f), scale);
+  return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(q) *
+         glm::scale(glm::mat4(1.0f), scale);
 }
 
 }  // namespace
@@ -80,10 +84,11 @@ std::string checkTrack(const AnimationTrack& t) {
     if (!std::isfinite(t.times[k]) || t.times[k] < 0.0f) return "key times must be finite and >= 0";
     if (k > 0 && !(t.times[k] > t.times[k - 1])) return "key times must increase";
   }
-  const std::size_t per = std::size_t(components(t)) * (t.interpolation == AnimationTrack::CubicSpline ? 3 : 1);
+  const std::size_t per =
+      std::size_t(components(t)) * (t.interpolation == AnimationTrack::CubicSpline ? 3 : 1);
   if (t.values.size() != t.times.size() * per) {
-    return std::to_string(t.values.size()) + " values for " + std::to_string(t.times.size()) + " keys, expected " +
-           std::to_string(t.times.size() * per);
+    return std::to_string(t.values.size()) + " values for " + std::to_string(t.times.size()) +
+           " keys, expected " + std::to_string(t.times.size() * per);
   }
   for (float v : t.values) {
     if (!std::isfinite(v)) return "values must be finite";

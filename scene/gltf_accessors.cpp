@@ -1,8 +1,8 @@
 #include "scene/gltf_accessors.h"
 
-#include <cstring>
-
 #include <tiny_gltf.h>
+
+#include <cstring>
 
 #include "scene/error.h"
 
@@ -98,16 +98,14 @@ ElementView checkedView(const tinygltf::Model& model, int viewIndex, std::size_t
                      std::to_string(view.buffer) + ", which does not exist");
   }
   const std::vector<unsigned char>& buffer = model.buffers[view.buffer].data;
-  const std::size_t stride =
-      useViewStride && view.byteStride != 0 ? view.byteStride : elementSize;
+  const std::size_t stride = useViewStride && view.byteStride != 0 ? view.byteStride : elementSize;
   if (stride < elementSize) {
     throw SceneError(where + ": byteStride " + std::to_string(stride) +
                      " is smaller than the element size " + std::to_string(elementSize));
   }
   // Overflow-safe: offset + stride·(count−1) + elementSize ≤ byteLength ≤ buffer size.
-  const std::size_t limit = std::min<std::size_t>(view.byteLength, buffer.size() > view.byteOffset
-                                                                       ? buffer.size() - view.byteOffset
-                                                                       : 0);
+  const std::size_t limit = std::min<std::size_t>(
+      view.byteLength, buffer.size() > view.byteOffset ? buffer.size() - view.byteOffset : 0);
   bool fits = view.byteOffset <= buffer.size() && byteOffset <= limit;
   if (fits && count > 0) {
     const std::size_t room = limit - byteOffset;
@@ -116,9 +114,8 @@ ElementView checkedView(const tinygltf::Model& model, int viewIndex, std::size_t
   if (!fits) {
     throw SceneError(where + ": " + std::to_string(count) + " elements of " +
                      std::to_string(elementSize) + " bytes do not fit bufferView " +
-                     std::to_string(viewIndex) + " (byteLength " +
-                     std::to_string(view.byteLength) + ", buffer " +
-                     std::to_string(buffer.size()) + " bytes)");
+                     std::to_string(viewIndex) + " (byteLength " + std::to_string(view.byteLength) +
+                     ", buffer " + std::to_string(buffer.size()) + " bytes)");
   }
   return {buffer.data() + view.byteOffset + byteOffset, stride};
 }
@@ -175,7 +172,8 @@ std::vector<float> readFloats(const tinygltf::Model& model, int index, int compo
     const ElementView vv = checkedView(model, acc.sparse.values.bufferView,
                                        acc.sparse.values.byteOffset, n, elementSize, false, where);
     for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t target = readIndex(iv.data + i * indexSize, acc.sparse.indices.componentType);
+      const std::uint32_t target =
+          readIndex(iv.data + i * indexSize, acc.sparse.indices.componentType);
       if (target >= acc.count) {
         throw SceneError(where + ": sparse index " + std::to_string(target) +
                          " is out of range (count " + std::to_string(acc.count) + ")");
@@ -193,10 +191,9 @@ std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index) 
   const tinygltf::Accessor& acc = accessorAt(model, index, "indices");
   const std::string where = "accessor " + std::to_string(index) + " (indices)";
   const int type = acc.componentType;
-  if (acc.type != TINYGLTF_TYPE_SCALAR ||
-      (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+  if (acc.type != TINYGLTF_TYPE_SCALAR || (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                                           type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                                           type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
     throw SceneError(where + ": expected unsigned integer scalars");
   }
   if (acc.sparse.isSparse || acc.bufferView < 0) {
@@ -205,7 +202,8 @@ std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index) 
     return std::vector<std::uint32_t>(f.begin(), f.end());
   }
   const int size = componentSize(type);
-  const ElementView v = checkedView(model, acc.bufferView, acc.byteOffset, acc.count, size, true, where);
+  const ElementView v =
+      checkedView(model, acc.bufferView, acc.byteOffset, acc.count, size, true, where);
   std::vector<std::uint32_t> out(acc.count);
   for (std::size_t i = 0; i < acc.count; ++i) out[i] = readIndex(v.data + i * v.stride, type);
   return out;

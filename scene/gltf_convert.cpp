@@ -1,8 +1,8 @@
 #include "scene/gltf_convert.h"
 
-#include <cmath>
-
 #include <tiny_gltf.h>
+
+#include <cmath>
 
 #include "scene/error.h"
 #include "scene/gltf_accessors.h"
@@ -35,7 +35,8 @@ std::vector<std::uint32_t> triangulate(int mode, std::vector<std::uint32_t> idx)
       out.insert(out.end(), {idx[i - 2], even ? idx[i - 1] : idx[i], even ? idx[i] : idx[i - 1]});
     }
   } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-    for (std::size_t i = 2; i < idx.size(); ++i) out.insert(out.end(), {idx[i - 1], idx[i], idx[0]});
+    for (std::size_t i = 2; i < idx.size(); ++i)
+      out.insert(out.end(), {idx[i - 1], idx[i], idx[0]});
   }
   return out;
 }
@@ -98,11 +99,14 @@ glm::mat4 withoutScale(const glm::mat4& world) {
   return m;
 }
 
-int primitiveMode(const tinygltf::Primitive& p) { return p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode; }
+int primitiveMode(const tinygltf::Primitive& p) {
+  return p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+}
 
 long long triangleCount(int mode, long long count) {
   if (mode == TINYGLTF_MODE_TRIANGLES) return count / 3;
-  if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) return std::max(count - 2, 0ll);
+  if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN)
+    return std::max(count - 2, 0ll);
   return 0;
 }
 

@@ -8,7 +8,7 @@
 namespace tinygltf {
 class Model;
 struct Primitive;
-}
+}  // namespace tinygltf
 
 namespace manylight::gltf {
 

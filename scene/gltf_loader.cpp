@@ -1,17 +1,16 @@
 #include "scene/gltf_loader.h"
 
+#include <tiny_gltf.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <set>
-
-#include <nlohmann/json.hpp>
-#include <tiny_gltf.h>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+#include <set>
 
 #include "scene/asset_files.h"
 #include "scene/camera_animation.h"
@@ -35,8 +34,8 @@ std::string oneLine(std::string s) {
 }
 
 // `user`: the LoadOptions.
-bool decodeImageForTinygltf(tinygltf::Image* image, const int index, std::string* err,
-                            std::string*, int, int, const unsigned char* bytes, int size, void* user) {
+bool decodeImageForTinygltf(tinygltf::Image* image, const int index, std::string* err, std::string*,
+                            int, int, const unsigned char* bytes, int size, void* user) {
   const LoadOptions& options = *static_cast<const LoadOptions*>(user);
   try {
     DecodedImage d = decodeImage(bytes, size_t(std::max(size, 0)), "image " + std::to_string(index),
@@ -62,7 +61,8 @@ glm::mat4 localTransform(const tinygltf::Node& node) {
   }
   glm::dmat4 m(1.0);
   if (node.translation.size() == 3) {
-    m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+    m = glm::translate(m,
+                       glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
   }
   if (node.rotation.size() == 4) {
     const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
@@ -78,7 +78,8 @@ int nodeLight(const tinygltf::Node& node) {
   auto it = node.extensions.find("KHR_lights_punctual");
   if (it == node.extensions.end() || !it->second.Has("light")) return -1;
   const tinygltf::Value& v = it->second.Get("light");
-  if (!v.IsNumber()) throw SceneError("node '" + node.name + "': KHR_lights_punctual.light is not an index");
+  if (!v.IsNumber())
+    throw SceneError("node '" + node.name + "': KHR_lights_punctual.light is not an index");
   return v.IsInt() ? v.Get<int>() : int(v.Get<double>());
 }
 
@@ -171,7 +172,8 @@ class SceneWalker {
       glm::mat4 parent;
     };
     std::vector<Item> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
+      stack.push_back({*it, glm::mat4(1.0f)});
     while (!stack.empty()) {
       const Item item = stack.back();
       stack.pop_back();
@@ -228,7 +230,8 @@ class SceneWalker {
     const int light = nodeLight(node);
     if (light >= 0) {
       // Past the budget, lights are only counted (nothing more is stored), for the message.
-      if (++lightsSeen_ <= options_.lightBudget) scene_.lights.push_back(convert_.light(light, world));
+      if (++lightsSeen_ <= options_.lightBudget)
+        scene_.lights.push_back(convert_.light(light, world));
     } else if (light < -1) {
       throw SceneError(where + ": light " + std::to_string(light) + " does not exist");
     }
@@ -238,7 +241,8 @@ class SceneWalker {
   // down to the node, with that animation's tracks on each.
   CameraAnimation cameraAnimation(int index) const {
     std::vector<int> chain;
-    for (int n = index; n >= 0 && chain.size() <= model_.nodes.size(); n = parent_[n]) chain.push_back(n);
+    for (int n = index; n >= 0 && chain.size() <= model_.nodes.size(); n = parent_[n])
+      chain.push_back(n);
     std::reverse(chain.begin(), chain.end());
     for (std::size_t a = 0; a < model_.animations.size(); ++a) {
       const tinygltf::Animation& anim = model_.animations[a];
@@ -249,15 +253,20 @@ class SceneWalker {
         AnimatedNode an;
         an.hasMatrix = node.matrix.size() == 16;
         an.matrix = localTransform(node);
-        if (node.translation.size() == 3) an.translation = glm::vec3(glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+        if (node.translation.size() == 3)
+          an.translation =
+              glm::vec3(glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
         if (node.rotation.size() == 4) {
-          an.rotation = glm::vec4(glm::dvec4(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]));
+          an.rotation = glm::vec4(
+              glm::dvec4(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]));
         }
-        if (node.scale.size() == 3) an.scale = glm::vec3(glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+        if (node.scale.size() == 3)
+          an.scale = glm::vec3(glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
         for (std::size_t c = 0; c < anim.channels.size(); ++c) {
           const tinygltf::AnimationChannel& ch = anim.channels[c];
           if (ch.target_node != n) continue;
-          const std::string where = "animation " + std::to_string(a) + ": channel " + std::to_string(c);
+          const std::string where =
+              "animation " + std::to_string(a) + ": channel " + std::to_string(c);
           AnimationTrack t;
           if (ch.target_path == "translation") {
             t.path = AnimationTrack::Translation;
@@ -268,7 +277,9 @@ class SceneWalker {
           } else {
             continue;  // morph target weights do not move a camera
           }
-          if (an.hasMatrix) throw SceneError(where + ": node " + std::to_string(n) + " has a matrix and cannot be animated");
+          if (an.hasMatrix)
+            throw SceneError(where + ": node " + std::to_string(n) +
+                             " has a matrix and cannot be animated");
           if (ch.sampler < 0 || std::size_t(ch.sampler) >= anim.samplers.size()) {
             throw SceneError(where + ": sampler " + std::to_string(ch.sampler) + " does not exist");
           }
@@ -283,7 +294,9 @@ class SceneWalker {
             throw SceneError(where + ": unknown interpolation '" + sampler.interpolation + "'");
           }
           t.times = gltf::readFloats(model_, sampler.input, 1, where + " input");
-          t.values = gltf::readFloats(model_, sampler.output, t.path == AnimationTrack::Rotation ? 4 : 3, where + " output");
+          t.values =
+              gltf::readFloats(model_, sampler.output, t.path == AnimationTrack::Rotation ? 4 : 3,
+                               where + " output");
           const std::string problem = checkTrack(t);
           if (!problem.empty()) throw SceneError(where + ": " + problem);
           out.duration = std::max(out.duration, t.times.back());
@@ -317,11 +330,13 @@ void checkTriangleCount(const tinygltf::Model& model, std::int64_t limit) {
         accessor = it == p.attributes.end() ? -1 : it->second;
       }
       if (accessor < 0 || accessor >= int(model.accessors.size())) continue;
-      triangles += gltf::triangleCount(gltf::primitiveMode(p), (long long)model.accessors[accessor].count);
+      triangles +=
+          gltf::triangleCount(gltf::primitiveMode(p), (long long)model.accessors[accessor].count);
     }
   }
   if (triangles > limit) {
-    throw SceneError(std::to_string(triangles) + " triangles exceed the limit of " + std::to_string(limit));
+    throw SceneError(std::to_string(triangles) + " triangles exceed the limit of " +
+                     std::to_string(limit));
   }
 }
 
@@ -333,10 +348,12 @@ void checkStructure(const tinygltf::Model& model, const gltf::Converter& convert
   std::vector<int> parent(nodes, -1);
   for (int n = 0; n < nodes; ++n) {
     for (int c : model.nodes[n].children) {
-      if (c < 0 || c >= nodes) throw SceneError("node " + std::to_string(n) + ": child " + std::to_string(c) + " does not exist");
+      if (c < 0 || c >= nodes)
+        throw SceneError("node " + std::to_string(n) + ": child " + std::to_string(c) +
+                         " does not exist");
       if (parent[c] >= 0) {
-        throw SceneError("node " + std::to_string(c) + " has two parents (nodes " + std::to_string(parent[c]) + " and " +
-                         std::to_string(n) + ")");
+        throw SceneError("node " + std::to_string(c) + " has two parents (nodes " +
+                         std::to_string(parent[c]) + " and " + std::to_string(n) + ")");
       }
       parent[c] = n;
     }
@@ -351,19 +368,22 @@ void checkStructure(const tinygltf::Model& model, const gltf::Converter& convert
       climb.push_back(v);
       v = parent[v];
     }
-    if (v >= 0 && state[v] == 1) throw SceneError("node " + std::to_string(v) + " is part of a cycle");
+    if (v >= 0 && state[v] == 1)
+      throw SceneError("node " + std::to_string(v) + " is part of a cycle");
     for (int c : climb) state[c] = 2;
   }
   for (std::size_t i = 0; i < model.bufferViews.size(); ++i) {
     const tinygltf::BufferView& view = model.bufferViews[i];
     if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) {
-      throw SceneError("bufferView " + std::to_string(i) + ": buffer " + std::to_string(view.buffer) + " does not exist");
+      throw SceneError("bufferView " + std::to_string(i) + ": buffer " +
+                       std::to_string(view.buffer) + " does not exist");
     }
     const std::size_t size = model.buffers[view.buffer].data.size();
     if (view.byteOffset > size || view.byteLength > size - view.byteOffset) {
-      throw SceneError("bufferView " + std::to_string(i) + ": bytes " + std::to_string(view.byteOffset) + ".." +
-                       std::to_string(view.byteOffset + view.byteLength) + " lie beyond its buffer's " +
-                       std::to_string(size));
+      throw SceneError("bufferView " + std::to_string(i) + ": bytes " +
+                       std::to_string(view.byteOffset) + ".." +
+                       std::to_string(view.byteOffset + view.byteLength) +
+                       " lie beyond its buffer's " + std::to_string(size));
     }
   }
   for (std::size_t i = 0; i < model.lights.size(); ++i) convert.light(int(i), glm::mat4(1.0f));
@@ -397,17 +417,21 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     parser.SetImageLoader(decodeImageForTinygltf, const_cast<LoadOptions*>(&options));
     // Every file read goes through AssetFiles; no shell expansion of paths (tinygltf's
     // default ExpandFilePath runs wordexp), no writing.
-    const std::string base = path.find_last_of("/\\") == std::string::npos ? "" : path.substr(0, path.find_last_of("/\\"));
+    const std::string base = path.find_last_of("/\\") == std::string::npos
+                                 ? ""
+                                 : path.substr(0, path.find_last_of("/\\"));
     AssetFiles files(path, base, options.maxFileBytes);
     tinygltf::FsCallbacks callbacks;
-    callbacks.FileExists = [](const std::string& p, void* user) { return static_cast<AssetFiles*>(user)->exists(p); };
+    callbacks.FileExists = [](const std::string& p, void* user) {
+      return static_cast<AssetFiles*>(user)->exists(p);
+    };
     callbacks.ExpandFilePath = [](const std::string& p, void*) { return p; };
-    callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& p, void* user) {
+    callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err,
+                                 const std::string& p, void* user) {
       return static_cast<AssetFiles*>(user)->read(out, err, p);
     };
-    callbacks.WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
-      return false;
-    };
+    callbacks.WriteWholeFile = [](std::string*, const std::string&,
+                                  const std::vector<unsigned char>&, void*) { return false; };
     callbacks.user_data = &files;
     parser.SetFsCallbacks(callbacks);
     tinygltf::Model model;
@@ -417,7 +441,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
       const bool ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
                              : parser.LoadASCIIFromFile(&model, &err, &warn, path);
       if (!ok) {
-        failure = !files.refusal().empty() ? files.refusal()
+        failure = !files.refusal().empty()   ? files.refusal()
                   : !files.missing().empty() ? files.missing()
                                              : oneLine(err.empty() ? "not a valid glTF file" : err);
       }
@@ -433,7 +457,8 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
       throw SceneError(failure);
     }
     // A missing image leaves its textures out; say so.
-    if (!files.missing().empty()) scene.warnings.push_back(files.missing() + "; its textures are left out");
+    if (!files.missing().empty())
+      scene.warnings.push_back(files.missing() + "; its textures are left out");
     checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
     checkTriangleCount(model, options.maxTriangles);
     gltf::Converter convert(model, scene, glm::radians(options.creaseAngleDegrees));

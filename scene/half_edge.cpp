@@ -13,7 +13,8 @@ struct PositionHash {
   std::size_t operator()(const glm::vec3& p) const {
     std::uint32_t b[3];
     std::memcpy(b, &p, sizeof b);
-    return (std::size_t(b[0]) * 73856093u) ^ (std::size_t(b[1]) * 19349663u) ^ (std::size_t(b[2]) * 83492791u);
+    return (std::size_t(b[0]) * 73856093u) ^ (std::size_t(b[1]) * 19349663u) ^
+           (std::size_t(b[2]) * 83492791u);
   }
 };
 
@@ -29,7 +30,8 @@ glm::dvec3 faceCross(const std::vector<glm::vec3>& positions, const std::uint32_
 
 }  // namespace
 
-HalfEdgeMesh buildHalfEdgeMesh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices) {
+HalfEdgeMesh buildHalfEdgeMesh(const std::vector<glm::vec3>& positions,
+                               const std::vector<std::uint32_t>& indices) {
   HalfEdgeMesh m;
   // Weld by position (-0 and +0 are different bits; a mesh writer would not mix them).
   std::unordered_map<glm::vec3, int, PositionHash> byPosition;
@@ -58,7 +60,8 @@ HalfEdgeMesh buildHalfEdgeMesh(const std::vector<glm::vec3>& positions, const st
   }
   // Twins: an edge with exactly two half-edges running opposite ways.
   std::unordered_map<std::uint64_t, std::vector<int>> edges;
-  for (int h = 0; h < int(m.halfEdges.size()); ++h) edges[edgeKey(m.origin(h), m.halfEdges[h].target)].push_back(h);
+  for (int h = 0; h < int(m.halfEdges.size()); ++h)
+    edges[edgeKey(m.origin(h), m.halfEdges[h].target)].push_back(h);
   for (const auto& [key, list] : edges) {
     if (list.size() == 1) {
       ++m.boundaryEdges;
@@ -72,20 +75,25 @@ HalfEdgeMesh buildHalfEdgeMesh(const std::vector<glm::vec3>& positions, const st
   return m;
 }
 
-CreasedNormals creasedNormals(const HalfEdgeMesh& m, const std::vector<glm::vec3>& positions, float creaseRadians) {
+CreasedNormals creasedNormals(const HalfEdgeMesh& m, const std::vector<glm::vec3>& positions,
+                              float creaseRadians) {
   const int faces = int(m.faceEdge.size());
   std::vector<glm::dvec3> faceNormal(faces);
-  for (int f = 0; f < faces; ++f) faceNormal[f] = glm::normalize(faceCross(positions, &m.triangles[3 * f]));
+  for (int f = 0; f < faces; ++f)
+    faceNormal[f] = glm::normalize(faceCross(positions, &m.triangles[3 * f]));
   const double cosCrease = std::cos(double(creaseRadians));
   auto smooth = [&](int h) {  // whether the edge of half-edge h joins its faces smoothly
     const int t = m.halfEdges[h].twin;
-    return t >= 0 && glm::dot(faceNormal[m.halfEdges[h].face], faceNormal[m.halfEdges[t].face]) >= cosCrease;
+    return t >= 0 &&
+           glm::dot(faceNormal[m.halfEdges[h].face], faceNormal[m.halfEdges[t].face]) >= cosCrease;
   };
   // The corner of face f at its vertex k: angle-weighted normal.
   auto cornerWeight = [&](int f, int k) {
     const glm::dvec3 p(positions[m.triangles[3 * f + k]]);
-    const glm::dvec3 u = glm::normalize(glm::dvec3(positions[m.triangles[3 * f + (k + 1) % 3]]) - p);
-    const glm::dvec3 v = glm::normalize(glm::dvec3(positions[m.triangles[3 * f + (k + 2) % 3]]) - p);
+    const glm::dvec3 u =
+        glm::normalize(glm::dvec3(positions[m.triangles[3 * f + (k + 1) % 3]]) - p);
+    const glm::dvec3 v =
+        glm::normalize(glm::dvec3(positions[m.triangles[3 * f + (k + 2) % 3]]) - p);
     return std::acos(std::clamp(glm::dot(u, v), -1.0, 1.0)) * faceNormal[f];
   };
   CreasedNormals out;
@@ -123,7 +131,8 @@ CreasedNormals creasedNormals(const HalfEdgeMesh& m, const std::vector<glm::vec3
         }
       }
       const std::uint32_t input = m.triangles[3 * f + k];
-      const auto [it, added] = vertexOf.emplace(std::make_pair(input, smallest), std::uint32_t(out.source.size()));
+      const auto [it, added] =
+          vertexOf.emplace(std::make_pair(input, smallest), std::uint32_t(out.source.size()));
       if (added) {
         out.source.push_back(input);
         out.normals.push_back(glm::vec3(glm::normalize(sum)));

@@ -4,9 +4,8 @@
 // vertex one incoming half-edge. Used to drop degenerate triangles, count boundary and
 // non-manifold edges, and build normals where a primitive has none.
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace manylight {
 
@@ -15,16 +14,16 @@ struct HalfEdgeMesh {
     int target;  // welded vertex this half-edge points to
     int twin;    // the opposite half-edge; −1 on a boundary or non-manifold edge
     int face;
-    int next;    // within the face
+    int next;  // within the face
   };
-  std::vector<HalfEdge> halfEdges;  // 3 per kept face: face f owns 3f, 3f+1, 3f+2
-  std::vector<int> faceEdge;        // one half-edge per face (3f)
-  std::vector<int> vertexIncoming;  // per welded vertex: one half-edge ending there, or −1
-  std::vector<int> welded;          // per input vertex: its welded vertex
+  std::vector<HalfEdge> halfEdges;       // 3 per kept face: face f owns 3f, 3f+1, 3f+2
+  std::vector<int> faceEdge;             // one half-edge per face (3f)
+  std::vector<int> vertexIncoming;       // per welded vertex: one half-edge ending there, or −1
+  std::vector<int> welded;               // per input vertex: its welded vertex
   std::vector<std::uint32_t> triangles;  // kept faces, 3 input vertex indices each
-  int degenerateTriangles = 0;  // dropped: a repeated (welded) vertex or zero area
-  int boundaryEdges = 0;        // edges with one face
-  int nonManifoldEdges = 0;     // edges with more than two faces, or two facing the same way
+  int degenerateTriangles = 0;           // dropped: a repeated (welded) vertex or zero area
+  int boundaryEdges = 0;                 // edges with one face
+  int nonManifoldEdges = 0;  // edges with more than two faces, or two facing the same way
 
   int origin(int h) const { return halfEdges[prev(h)].target; }
   int prev(int h) const { return halfEdges[halfEdges[h].next].next; }
@@ -32,7 +31,8 @@ struct HalfEdgeMesh {
 
 // Builds the structure for triangles `indices` (3 per face) over `positions`; vertices at
 // bit-identical positions are welded.
-HalfEdgeMesh buildHalfEdgeMesh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices);
+HalfEdgeMesh buildHalfEdgeMesh(const std::vector<glm::vec3>& positions,
+                               const std::vector<std::uint32_t>& indices);
 
 // Normals for the kept faces of `mesh`: around each vertex, faces joined by edges whose
 // dihedral angle is below `creaseRadians` share one normal (the angle-weighted mean of

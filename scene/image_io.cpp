@@ -19,7 +19,8 @@ struct Loaded {
 Loaded load() {
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const std::string path = ec ? std::string(kModuleName) : (exe.parent_path() / kModuleName).string();
+  const std::string path =
+      ec ? std::string(kModuleName) : (exe.parent_path() / kModuleName).string();
   // RTLD_LOCAL: OpenImageIO's libraries stay out of the global symbol scope. RTLD_LAZY: of
   // their thousands of functions, bind only those called.
   void* handle = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);

@@ -22,11 +22,14 @@ bool readPixels(OIIO::ImageInput& in, OIIO::TypeDesc type, RawImage<T>* out, std
   out->height = spec.height;
   out->channels = spec.nchannels;
   out->pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
-  return in.read_image(0, 0, 0, spec.nchannels, type, out->pixels.data()) ? true : fail(error, in.geterror());
+  return in.read_image(0, 0, 0, spec.nchannels, type, out->pixels.data())
+             ? true
+             : fail(error, in.geterror());
 }
 
-bool decode8(const unsigned char* bytes, std::size_t size, const char* extension, std::int64_t maxDimension,
-             std::int64_t maxPixels, RawImage<std::uint8_t>* out, std::string* error) {
+bool decode8(const unsigned char* bytes, std::size_t size, const char* extension,
+             std::int64_t maxDimension, std::int64_t maxPixels, RawImage<std::uint8_t>* out,
+             std::string* error) {
   OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes), size);
   auto in = OIIO::ImageInput::open(std::string("image") + extension, nullptr, &reader);
   if (!in) return fail(error, OIIO::geterror());
@@ -36,11 +39,13 @@ bool decode8(const unsigned char* bytes, std::size_t size, const char* extension
   }
   if (spec.width > maxDimension || spec.height > maxDimension) {
     return fail(error, std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                           " exceeds the texture dimension limit of " + std::to_string(maxDimension));
+                           " exceeds the texture dimension limit of " +
+                           std::to_string(maxDimension));
   }
   if (std::int64_t(spec.width) * spec.height > maxPixels) {
     return fail(error, std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                           " exceeds the texture limit of " + std::to_string(maxPixels) + " pixels");
+                           " exceeds the texture limit of " + std::to_string(maxPixels) +
+                           " pixels");
   }
   return readPixels(*in, OIIO::TypeDesc::UINT8, out, error);
 }
@@ -61,7 +66,8 @@ bool write(const char* path, const RawImage<T>& image, OIIO::TypeDesc type, cons
   return ok ? true : fail(error, out->geterror());
 }
 
-bool encodePng8(const RawImage<std::uint8_t>& image, std::vector<unsigned char>* png, std::string* error) {
+bool encodePng8(const RawImage<std::uint8_t>& image, std::vector<unsigned char>* png,
+                std::string* error) {
   OIIO::Filesystem::IOVecOutput memory(*png);
   return write("memory.png", image, OIIO::TypeDesc::UINT8, "sRGB", error, &memory);
 }
@@ -80,8 +86,8 @@ bool readFloat(const char* path, RawImage<float>* out, std::string* error) {
   return readPixels(*in, OIIO::TypeDesc::FLOAT, out, error);
 }
 
-bool compareFiles(const char* a, const char* b, double threshold, const char* diffPath, double diffScale,
-                  ImageComparison* out, std::string* error) {
+bool compareFiles(const char* a, const char* b, double threshold, const char* diffPath,
+                  double diffScale, ImageComparison* out, std::string* error) {
   OIIO::ImageBuf images[2] = {OIIO::ImageBuf(a), OIIO::ImageBuf(b)};
   for (int i = 0; i < 2; ++i) {
     if (!images[i].read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
@@ -95,9 +101,11 @@ bool compareFiles(const char* a, const char* b, double threshold, const char* di
   out->sameShape = out->width[0] == out->width[1] && out->height[0] == out->height[1] &&
                    out->channels[0] == out->channels[1];
   if (!out->sameShape) return true;
-  const auto r = OIIO::ImageBufAlgo::compare(images[0], images[1], float(threshold), float(threshold));
+  const auto r =
+      OIIO::ImageBufAlgo::compare(images[0], images[1], float(threshold), float(threshold));
   // r.error only says that some value failed; errors of the comparison itself land here.
-  if (images[0].has_error() || images[1].has_error()) return fail(error, images[0].geterror() + images[1].geterror());
+  if (images[0].has_error() || images[1].has_error())
+    return fail(error, images[0].geterror() + images[1].geterror());
   out->maxError = r.maxerror;
   out->meanError = r.meanerror;
   out->rmsError = r.rms_error;
@@ -114,15 +122,18 @@ bool compareFiles(const char* a, const char* b, double threshold, const char* di
   diff = OIIO::ImageBufAlgo::clamp(diff, 0.0f, 1.0f);
   if (diff.has_error()) return fail(error, diff.geterror());
   diff.specmod().attribute("DateTime", "");
-  return diff.write(diffPath, OIIO::TypeDesc::UINT8, "png") ? true : fail(error, diff.geterror() + OIIO::geterror());
+  return diff.write(diffPath, OIIO::TypeDesc::UINT8, "png")
+             ? true
+             : fail(error, diff.geterror() + OIIO::geterror());
 }
 
-const ImageIoApi kApi = {ImageIoApi::kVersion, decode8, encodePng8, writeSrgb8, writeLinearFloat, readFloat,
-                         compareFiles};
+const ImageIoApi kApi = {ImageIoApi::kVersion, decode8,   encodePng8,  writeSrgb8,
+                         writeLinearFloat,     readFloat, compareFiles};
 
 }  // namespace
 }  // namespace manylight
 
-extern "C" __attribute__((visibility("default"))) const manylight::ImageIoApi* manylight_imageio_api() {
+extern "C" __attribute__((visibility("default"))) const manylight::ImageIoApi*
+manylight_imageio_api() {
   return &manylight::kApi;
 }

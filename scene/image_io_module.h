@@ -31,8 +31,8 @@ struct ImageComparison {
   bool sameShape = false;  // same width, height and channel count; nothing else is compared
   double maxError = 0.0, meanError = 0.0, rmsError = 0.0, psnr = 0.0;
   int maxX = 0, maxY = 0, maxChannel = 0;  // where the largest difference is
-  long long values = 0;   // channel values compared
-  long long failing = 0;  // of them, off by more than the threshold
+  long long values = 0;                    // channel values compared
+  long long failing = 0;                   // of them, off by more than the threshold
 };
 
 struct ImageIoApi {
@@ -57,8 +57,8 @@ struct ImageIoApi {
   // Compares files `a` and `b`; values off by more than `threshold` count as failing. When
   // `diffPath` is not null and the shapes agree, also writes |a − b| · diffScale, clamped,
   // as an 8-bit PNG (colour channels only) there.
-  bool (*compareFiles)(const char* a, const char* b, double threshold, const char* diffPath, double diffScale,
-                       ImageComparison* out, std::string* error);
+  bool (*compareFiles)(const char* a, const char* b, double threshold, const char* diffPath,
+                       double diffScale, ImageComparison* out, std::string* error);
 };
 
 }  // namespace manylight

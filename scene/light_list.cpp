@@ -4,7 +4,6 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
 #include "scene/error.h"
@@ -32,7 +31,8 @@ Light toLight(const ListedLight& l) {
   for (int c = 0; c < 3; ++c) {
     const double v = l.rgb[c];
     if (v != std::floor(v) || v < 0.0 || v > 255.0) {
-      throw ListError(std::string("colour ") + "RGB"[c] + " must be an integer code 0..255, got " + std::to_string(v));
+      throw ListError(std::string("colour ") + "RGB"[c] + " must be an integer code 0..255, got " +
+                      std::to_string(v));
     }
   }
   if (!(l.brightness >= 0.0) || !std::isfinite(float(l.brightness))) {
@@ -47,10 +47,12 @@ Light toLight(const ListedLight& l) {
   Light light;
   light.type = LightType::Point;
   light.position = glm::vec3(l.position);
-  if (!std::isfinite(light.position.x) || !std::isfinite(light.position.y) || !std::isfinite(light.position.z)) {
+  if (!std::isfinite(light.position.x) || !std::isfinite(light.position.y) ||
+      !std::isfinite(light.position.z)) {
     throw ListError("position is not finite in single precision");
   }
-  light.colour = glm::vec3(float(decodeSrgb8(std::uint8_t(l.rgb[0]))), float(decodeSrgb8(std::uint8_t(l.rgb[1]))),
+  light.colour = glm::vec3(float(decodeSrgb8(std::uint8_t(l.rgb[0]))),
+                           float(decodeSrgb8(std::uint8_t(l.rgb[1]))),
                            float(decodeSrgb8(std::uint8_t(l.rgb[2]))));
   light.intensity = float(l.brightness);
   light.range = float(l.radius);
@@ -62,7 +64,8 @@ Light toLight(const ListedLight& l) {
 const char* const kCsvColumns[] = {"x", "y", "z", "r", "g", "b", "brightness", "radius", "falloff"};
 constexpr int kCsvRequired = 7;  // the first seven
 
-std::vector<ListedLight> parseCsv(const std::vector<TextLine>& lines, std::vector<int>& lineNumbers) {
+std::vector<ListedLight> parseCsv(const std::vector<TextLine>& lines,
+                                  std::vector<int>& lineNumbers) {
   if (lines.empty()) return {};
   // column[k]: which field holds kCsvColumns[k], or −1.
   int column[9];
@@ -72,16 +75,18 @@ std::vector<ListedLight> parseCsv(const std::vector<TextLine>& lines, std::vecto
     int k = 0;
     while (k < 9 && header[f] != kCsvColumns[k]) ++k;
     if (k == 9) {
-      throw ListError(std::to_string(lines[0].number) + ": unknown column '" + std::string(header[f]) +
+      throw ListError(std::to_string(lines[0].number) + ": unknown column '" +
+                      std::string(header[f]) +
                       "'; expected x,y,z,r,g,b,brightness[,radius][,falloff]");
     }
-    if (column[k] >= 0) throw ListError(std::to_string(lines[0].number) + ": column '" + kCsvColumns[k] + "' twice");
+    if (column[k] >= 0)
+      throw ListError(std::to_string(lines[0].number) + ": column '" + kCsvColumns[k] + "' twice");
     column[k] = int(f);
   }
   for (int k = 0; k < kCsvRequired; ++k) {
     if (column[k] < 0) {
-      throw ListError(std::to_string(lines[0].number) + ": the header has no column '" + kCsvColumns[k] +
-                      "'; expected x,y,z,r,g,b,brightness[,radius][,falloff]");
+      throw ListError(std::to_string(lines[0].number) + ": the header has no column '" +
+                      kCsvColumns[k] + "'; expected x,y,z,r,g,b,brightness[,radius][,falloff]");
     }
   }
   std::vector<ListedLight> lights;
@@ -97,7 +102,8 @@ std::vector<ListedLight> parseCsv(const std::vector<TextLine>& lines, std::vecto
     for (int k = 0; k < 8; ++k) {
       if (column[k] < 0) continue;
       if (!parseNumber(fields[column[k]], v[k])) {
-        throw ListError(where + kCsvColumns[k] + ": expected a number, got '" + std::string(fields[column[k]]) + "'");
+        throw ListError(where + kCsvColumns[k] + ": expected a number, got '" +
+                        std::string(fields[column[k]]) + "'");
       }
     }
     ListedLight l;
@@ -156,7 +162,8 @@ class DumpLine {
     while (!s_.empty() && (s_[0] == ' ' || s_[0] == '\t')) s_.remove_prefix(1);
   }
   [[noreturn]] void fail(const std::string& expected) {
-    const std::string got = s_.empty() ? "the end of the line" : "'" + std::string(s_.substr(0, 16)) + "'";
+    const std::string got =
+        s_.empty() ? "the end of the line" : "'" + std::string(s_.substr(0, 16)) + "'";
     throw ListError("expected " + expected + ", got " + got);
   }
   std::string_view s_;
@@ -237,7 +244,8 @@ ListedLight parseJsonLight(const nlohmann::json& j) {
       if (!v.is_string()) throw ListError("falloff: expected a string");
       l.falloff = v.get<std::string>();
     } else {
-      throw ListError("unknown key '" + key + "'; expected position, color, brightness, radius, falloff");
+      throw ListError("unknown key '" + key +
+                      "'; expected position, color, brightness, radius, falloff");
     }
   }
   if (!hasPosition) throw ListError("no position");
@@ -246,7 +254,8 @@ ListedLight parseJsonLight(const nlohmann::json& j) {
   return l;
 }
 
-void checkBudget(const std::string& path, std::size_t listed, const Scene& scene, const LoadOptions& options) {
+void checkBudget(const std::string& path, std::size_t listed, const Scene& scene,
+                 const LoadOptions& options) {
   if (scene.lights.size() + listed > options.lightBudget) {
     throw SceneError(path + ": " + std::to_string(listed) + " lights and the scene's " +
                      std::to_string(scene.lights.size()) + " exceed the light budget of " +
@@ -276,10 +285,12 @@ void appendLightList(const std::string& path, Scene& scene, const LoadOptions& o
     const nlohmann::json* array = &j;
     if (j.is_object()) {
       const auto it = j.find("lights");
-      if (it == j.end() || j.size() != 1) throw SceneError(path + ": expected an array of lights or {\"lights\": [...]}");
+      if (it == j.end() || j.size() != 1)
+        throw SceneError(path + ": expected an array of lights or {\"lights\": [...]}");
       array = &*it;
     }
-    if (!array->is_array()) throw SceneError(path + ": expected an array of lights or {\"lights\": [...]}");
+    if (!array->is_array())
+      throw SceneError(path + ": expected an array of lights or {\"lights\": [...]}");
     checkBudget(path, array->size(), scene, options);
     lights.reserve(array->size());
     for (std::size_t i = 0; i < array->size(); ++i) {

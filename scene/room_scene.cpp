@@ -67,11 +67,13 @@ void writeRoomScene(const std::string& path, const RoomOptions& o) {
         l.innerConeAngle = 0.6f * l.outerConeAngle;
         break;
       case LightType::Directional:
-        l.direction = glm::normalize(glm::vec3(-1.0f + 2.0f * u(rng), -1.0f, -1.0f + 2.0f * u(rng)));
+        l.direction =
+            glm::normalize(glm::vec3(-1.0f + 2.0f * u(rng), -1.0f, -1.0f + 2.0f * u(rng)));
         l.intensity = (1.0f + 2.0f * u(rng)) / n;
         break;
     }
-    if (o.withRange && l.type != LightType::Directional && i % 2 == 0) l.range = 3.0f + 5.0f * u(rng);
+    if (o.withRange && l.type != LightType::Directional && i % 2 == 0)
+      l.range = 3.0f + 5.0f * u(rng);
     b.addLight(l);
   }
   b.write(path);

@@ -2,10 +2,9 @@
 // The scene as the renderer sees it: world-space lights and cameras, meshes with their
 // instances, materials and decoded textures. Plain data; no GL.
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace manylight {
 
@@ -14,12 +13,12 @@ enum class LightType : std::uint8_t { Point, Spot, Directional };
 // A KHR_lights_punctual light placed in the world. Spec defaults apply to absent fields.
 struct Light {
   LightType type = LightType::Point;
-  glm::vec3 position{0.0f};            // world space; unused for directional lights
-  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit, the way the light travels (spot, directional)
-  glm::vec3 colour{1.0f};              // linear RGB
-  float intensity = 1.0f;              // candela (point, spot) or lux (directional)
-  float range = 0.0f;                  // 0: infinite
-  float innerConeAngle = 0.0f;         // radians, spot only
+  glm::vec3 position{0.0f};                   // world space; unused for directional lights
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};     // unit, the way the light travels (spot, directional)
+  glm::vec3 colour{1.0f};                     // linear RGB
+  float intensity = 1.0f;                     // candela (point, spot) or lux (directional)
+  float range = 0.0f;                         // 0: infinite
+  float innerConeAngle = 0.0f;                // radians, spot only
   float outerConeAngle = 0.785398163397448f;  // π/4
 };
 
@@ -46,11 +45,11 @@ struct Material {
 // One triangle list. Attributes are in the mesh's local space.
 struct Primitive {
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;    // same count as positions
-  std::vector<glm::vec2> texcoords;  // empty or same count
-  std::vector<glm::vec4> colours;    // empty or same count (linear RGBA)
+  std::vector<glm::vec3> normals;      // same count as positions
+  std::vector<glm::vec2> texcoords;    // empty or same count
+  std::vector<glm::vec4> colours;      // empty or same count (linear RGBA)
   std::vector<std::uint32_t> indices;  // triangles, 3 per face
-  int material = -1;  // index into Scene::materials; -1 for the default material
+  int material = -1;                   // index into Scene::materials; -1 for the default material
 };
 
 // What the half-edge pass (scene/half_edge.h) found over all primitives.
@@ -96,8 +95,8 @@ struct Camera {
   float yfov = 0.785398163397448f;  // radians, perspective
   float xmag = 1.0f, ymag = 1.0f;   // orthographic half extents
   float znear = 0.01f;
-  float zfar = 0.0f;  // 0: infinite (perspective only)
-  glm::mat4 world{1.0f};  // camera-to-world, unit scale; looks down −Z, +Y up
+  float zfar = 0.0f;          // 0: infinite (perspective only)
+  glm::mat4 world{1.0f};      // camera-to-world, unit scale; looks down −Z, +Y up
   CameraAnimation animation;  // the first glTF animation that moves it, if any
 };
 

@@ -1,14 +1,13 @@
 #include "scene/scene_builder.h"
 
+#include <tiny_gltf.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-
-#include <unistd.h>
-
 #include <glm/gtc/quaternion.hpp>
-#include <tiny_gltf.h>
 
 #include "scene/error.h"
 #include "scene/image_io.h"
@@ -38,8 +37,9 @@ struct GltfBuilder::Impl {
     a.bufferView = addView(data, count * components * 4, target);
     a.componentType = type;
     a.count = count;
-    a.type = components == 1 ? TINYGLTF_TYPE_SCALAR : components == 2 ? TINYGLTF_TYPE_VEC2
-                                                                       : TINYGLTF_TYPE_VEC3;
+    a.type = components == 1   ? TINYGLTF_TYPE_SCALAR
+             : components == 2 ? TINYGLTF_TYPE_VEC2
+                               : TINYGLTF_TYPE_VEC3;
     if (bounds) {
       const float* f = static_cast<const float*>(data);
       a.minValues.assign(3, 1e30);
@@ -59,12 +59,12 @@ struct GltfBuilder::Impl {
               const std::vector<glm::vec2>& uv, const std::vector<std::uint32_t>& idx,
               int material) {
     tinygltf::Primitive p;
-    p.attributes["POSITION"] = addAccessor(pos.data(), pos.size(), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                           3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    p.attributes["POSITION"] = addAccessor(pos.data(), pos.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, 3,
+                                           TINYGLTF_TARGET_ARRAY_BUFFER, true);
     p.attributes["NORMAL"] = addAccessor(nrm.data(), nrm.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, 3,
                                          TINYGLTF_TARGET_ARRAY_BUFFER);
-    p.attributes["TEXCOORD_0"] = addAccessor(uv.data(), uv.size(), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                             2, TINYGLTF_TARGET_ARRAY_BUFFER);
+    p.attributes["TEXCOORD_0"] = addAccessor(uv.data(), uv.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, 2,
+                                             TINYGLTF_TARGET_ARRAY_BUFFER);
     p.indices = addAccessor(idx.data(), idx.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, 1,
                             TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     p.material = material;
@@ -130,7 +130,8 @@ int GltfBuilder::addMaterial(const BuilderMaterial& m) {
     const RawImage<std::uint8_t> pixels{m.textureWidth, m.textureHeight, 4, m.textureRgba};
     std::vector<unsigned char> png;
     std::string error;
-    if (!imageIo().encodePng8(pixels, &png, &error)) throw SceneError("cannot encode texture: " + error);
+    if (!imageIo().encodePng8(pixels, &png, &error))
+      throw SceneError("cannot encode texture: " + error);
     tinygltf::Image img;
     img.bufferView = impl_->addView(png.data(), png.size(), 0);
     img.mimeType = "image/png";
@@ -184,7 +185,8 @@ int GltfBuilder::addSphere(glm::vec3 centre, float diameter, int material, int s
     const float theta = float(M_PI) * r / rings;
     for (int s = 0; s <= segments; ++s) {
       const float phi = 2.0f * float(M_PI) * s / segments;
-      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                        std::sin(theta) * std::sin(phi));
       pos.push_back(0.5f * n);
       nrm.push_back(n);
       uv.push_back({float(s) / segments, float(r) / rings});
@@ -202,7 +204,8 @@ int GltfBuilder::addSphere(glm::vec3 centre, float diameter, int material, int s
 }
 
 int GltfBuilder::addPlane(glm::vec3 centre, glm::vec2 size, int material) {
-  const std::vector<glm::vec3> pos = {{-0.5f, 0, 0.5f}, {0.5f, 0, 0.5f}, {0.5f, 0, -0.5f}, {-0.5f, 0, -0.5f}};
+  const std::vector<glm::vec3> pos = {
+      {-0.5f, 0, 0.5f}, {0.5f, 0, 0.5f}, {0.5f, 0, -0.5f}, {-0.5f, 0, -0.5f}};
   const std::vector<glm::vec3> nrm(4, glm::vec3(0, 1, 0));
   const std::vector<glm::vec2> uv = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
   const std::vector<std::uint32_t> idx = {0, 1, 2, 0, 2, 3};
@@ -212,7 +215,9 @@ int GltfBuilder::addPlane(glm::vec3 centre, glm::vec2 size, int material) {
 
 void GltfBuilder::addLight(const Light& light) {
   tinygltf::Light l;
-  l.type = light.type == LightType::Point ? "point" : light.type == LightType::Spot ? "spot" : "directional";
+  l.type = light.type == LightType::Point  ? "point"
+           : light.type == LightType::Spot ? "spot"
+                                           : "directional";
   l.color = {light.colour.r, light.colour.g, light.colour.b};
   l.intensity = light.intensity;
   l.range = light.type == LightType::Directional ? 0.0 : light.range;

@@ -28,7 +28,6 @@
 // are culled.
 #include <algorithm>
 #include <cmath>
-
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"

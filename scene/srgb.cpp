@@ -7,7 +7,8 @@ namespace manylight {
 std::uint8_t encodeSrgb8(double linear) {
   if (!(linear > 0.0)) return 0;  // also NaN
   if (linear >= 1.0) return 255;
-  const double v = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+  const double v =
+      linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
   return std::uint8_t(std::lround(v * 255.0));
 }
 

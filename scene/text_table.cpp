@@ -1,8 +1,8 @@
 #include "scene/text_table.h"
 
 #include <cerrno>
-#include <cmath>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -16,18 +16,20 @@ namespace fs = std::filesystem;
 std::string readTextFile(const std::string& path, std::uintmax_t maxBytes) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) throw SceneError(path + ": cannot open: No such file or directory");
+  if (ec || !fs::exists(status))
+    throw SceneError(path + ": cannot open: No such file or directory");
   if (!fs::is_regular_file(status)) throw SceneError(path + ": not a regular file");
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) throw SceneError(path + ": " + ec.message());
   if (size > maxBytes) {
-    throw SceneError(path + ": " + std::to_string(size) + " bytes exceed the limit of " + std::to_string(maxBytes) +
-                     " bytes");
+    throw SceneError(path + ": " + std::to_string(size) + " bytes exceed the limit of " +
+                     std::to_string(maxBytes) + " bytes");
   }
   std::ifstream f(path, std::ios::binary);
   if (!f) throw SceneError(path + ": cannot open: " + std::strerror(errno));
   std::string text(size, '\0');
-  if (size > 0 && !f.read(text.data(), std::streamsize(size))) throw SceneError(path + ": cannot read");
+  if (size > 0 && !f.read(text.data(), std::streamsize(size)))
+    throw SceneError(path + ": cannot read");
   return text;
 }
 

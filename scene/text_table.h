@@ -14,7 +14,7 @@ namespace manylight {
 std::string readTextFile(const std::string& path, std::uintmax_t maxBytes);
 
 struct TextLine {
-  int number;  // 1-based
+  int number;             // 1-based
   std::string_view text;  // without the line break and surrounding blanks
 };
 

@@ -1,9 +1,9 @@
 // Camera animations (scene/camera_animation.h): read from glTF, evaluated with each
 // interpolation, checked, and kept by baked scenes.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <fstream>
-
-#include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bake/baked_file.h"
@@ -55,7 +55,8 @@ TEST(CameraAnimation, CubicSplinesFollowHermiteCurves) {
   EXPECT_NEAR(positionAt(c, 1.0f).x, 2.0f, 1e-5f);
   EXPECT_NEAR(positionAt(c, 0.5f).x, 4.0f * (3 * 0.0625f - 2 * 0.015625f), 1e-5f);
   // A tangent of 4 units/s at the start: the curve leaves faster.
-  c.animation.chain[0].tracks[0].values[6] = 4.0f;  // key 0: in-tangent 0–2, value 3–5, out-tangent 6–8
+  c.animation.chain[0].tracks[0].values[6] =
+      4.0f;  // key 0: in-tangent 0–2, value 3–5, out-tangent 6–8
   const float u = 0.25f, dt = 2.0f;
   const float want = dt * (u * u * u - 2 * u * u + u) * 4.0f + (-2 * u * u * u + 3 * u * u) * 4.0f;
   EXPECT_NEAR(positionAt(c, 0.5f).x, want, 1e-5f);
@@ -74,7 +75,8 @@ TEST(CameraAnimation, BrokenTracksAreRefused) {
     loadGltf(unknown);
     ADD_FAILURE() << "accepted";
   } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()), unknown + ": animation 0: channel 0: unknown interpolation 'BEZIER'");
+    EXPECT_EQ(std::string(e.what()),
+              unknown + ": animation 0: channel 0: unknown interpolation 'BEZIER'");
   }
   AnimationTrack t;
   t.times = {0.0f, 1.0f};
@@ -90,7 +92,8 @@ TEST(CameraAnimation, BakedScenesKeepIt) {
   ASSERT_EQ(b.scene.cameras.size(), 1u);
   EXPECT_EQ(b.scene.cameras[0].animation.duration, 2.0f);
   for (float t : {0.0f, 0.3f, 1.0f, 1.7f, 2.0f}) {
-    EXPECT_EQ(animatedCameraWorld(b.scene.cameras[0], t), animatedCameraWorld(s.cameras[0], t)) << t;
+    EXPECT_EQ(animatedCameraWorld(b.scene.cameras[0], t), animatedCameraWorld(s.cameras[0], t))
+        << t;
   }
 }
 

@@ -1,11 +1,11 @@
 // Baked scenes (bake/baked_file.h): a bake reads back as the scene it was made from, trees
 // included, and anything that is not an intact baked file of this version is refused with a
 // message naming the file and the problem.
+#include <gtest/gtest.h>
+
 #include <cstring>
 #include <fstream>
 #include <sstream>
-
-#include <gtest/gtest.h>
 
 #include "bake/baked_file.h"
 #include "bake/light_tree_layout.h"
@@ -24,7 +24,9 @@ std::string readBytes(const std::string& path) {
   return ss.str();
 }
 
-void writeBytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
+void writeBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
 
 Scene roomWithLights(int lights, bool specular = false) {
   RoomOptions o;
@@ -150,12 +152,12 @@ TEST(BakedFile, DamagedAndForeignFilesAreRefused) {
   };
   std::vector<Case> cases;
   cases.push_back({"truncated", bytes.substr(0, bytes.size() - 1),
-                   "truncated or extended: " + std::to_string(bytes.size() - 1) + " bytes, the header says " +
-                       std::to_string(bytes.size())});
+                   "truncated or extended: " + std::to_string(bytes.size() - 1) +
+                       " bytes, the header says " + std::to_string(bytes.size())});
   cases.push_back({"header-only", bytes.substr(0, 20), "truncated: 20 bytes"});
   cases.push_back({"extended", bytes + "x",
-                   "truncated or extended: " + std::to_string(bytes.size() + 1) + " bytes, the header says " +
-                       std::to_string(bytes.size())});
+                   "truncated or extended: " + std::to_string(bytes.size() + 1) +
+                       " bytes, the header says " + std::to_string(bytes.size())});
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x10;
   cases.push_back({"bit-flip", flipped, "checksum mismatch: the file is damaged"});
@@ -164,13 +166,15 @@ TEST(BakedFile, DamagedAndForeignFilesAreRefused) {
   cases.push_back({"last-bit", lastByte, "checksum mismatch: the file is damaged"});
   std::string version = bytes;
   version[9] ^= 0x01;  // version 1 + 256
-  cases.push_back({"version", version, "baked format version 257, expected 1; bake the scene again"});
+  cases.push_back(
+      {"version", version, "baked format version 257, expected 1; bake the scene again"});
   std::string magic = bytes;
   magic[0] = 'X';
   cases.push_back({"magic", magic, "not a manylight baked file (no MLBAKE magic)"});
   cases.push_back({"png", std::string("\x89PNG\r\n\x1a\n", 8) + std::string(100, '\0'),
                    "not a manylight baked file (no MLBAKE magic)"});
-  cases.push_back({"gltf", R"({"asset": {"version": "2.0"}})", "not a manylight baked file (no MLBAKE magic)"});
+  cases.push_back(
+      {"gltf", R"({"asset": {"version": "2.0"}})", "not a manylight baked file (no MLBAKE magic)"});
   cases.push_back({"empty", "", "not a manylight baked file (no MLBAKE magic)"});
   std::string flags = bytes;
   flags[12] = 1;
@@ -182,12 +186,15 @@ TEST(BakedFile, DamagedAndForeignFilesAreRefused) {
   cases.push_back({"light-type", lightType, "lights: unknown light type 7"});
   std::string rep = bytes;
   const std::size_t trees = sectionOffset(bytes, "TREE");
-  // base[3], leaves[3], coding, fit (5 doubles, a count), fittedToSrgb, scale, 8 doubles, word count.
+  // base[3], leaves[3], coding, fit (5 doubles, a count), fittedToSrgb, scale, 8 doubles, word
+  // count.
   const std::size_t words = trees + 24 + 1 + 48 + 1 + 4 + 64 + 8;
   const std::int32_t farLight = 99999;
-  std::memcpy(&rep[words + 4 * (layout::kNodeWords + 3)], &farLight, 4);  // the first tree (directional), node 1
+  std::memcpy(&rep[words + 4 * (layout::kNodeWords + 3)], &farLight,
+              4);  // the first tree (directional), node 1
   reseal(rep);
-  cases.push_back({"representative", rep, "light trees: tree 0: node 1 names light 99999, not one of its type"});
+  cases.push_back({"representative", rep,
+                   "light trees: tree 0: node 1 names light 99999, not one of its type"});
   std::string index = bytes;
   index[sectionOffset(bytes, "INST") + 4] = 100;  // instance 0's mesh
   reseal(index);

@@ -1,13 +1,12 @@
 // The manylight program as a user runs it: outputs, stats, exit codes and exact messages.
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <fstream>
-#include <sstream>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "render/colour_calibration.h"
 #include "render/image.h"
@@ -38,9 +37,11 @@ std::string readFile(const fs::path& p) {
 ProcessResult manylight(const std::string& args) {
   const fs::path errFile = fs::path(testFolder().string() + "-stderr.txt");
   const fs::path outFile = fs::path(testFolder().string() + "-stdout.txt");
-  const std::string cmd = std::string(MANYLIGHT_BIN) + " " + args + " 2>" + errFile.string() + " >" + outFile.string();
+  const std::string cmd =
+      std::string(MANYLIGHT_BIN) + " " + args + " 2>" + errFile.string() + " >" + outFile.string();
   const int status = std::system(cmd.c_str());
-  ProcessResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(errFile), readFile(outFile)};
+  ProcessResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(errFile),
+                  readFile(outFile)};
   fs::remove(errFile);
   fs::remove(outFile);
   return r;
@@ -57,22 +58,24 @@ TEST(Cli, RendersPngAndExrWithStats) {
   o.lightCount = 16;
   const std::string scene = roomScene(o);
   const fs::path dir = testFolder();
-  const ProcessResult r = manylight("render " + scene + " -o " + (dir / "a.png").string() + " --size 80x60 --stats " +
-                          (dir / "stats.json").string());
+  const ProcessResult r = manylight("render " + scene + " -o " + (dir / "a.png").string() +
+                                    " --size 80x60 --stats " + (dir / "stats.json").string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const Image png = readImage((dir / "a.png").string());
   EXPECT_EQ(png.width, 80);
   EXPECT_EQ(png.height, 60);
   const auto stats = nlohmann::json::parse(readFile(dir / "stats.json"));
-  for (const char* key : {"method", "backend", "renderer", "width", "height", "lights", "load_ms",
-                          "render_ms", "total_ms", "degenerate_triangles", "boundary_edges",
-                          "non_manifold_edges"}) {
+  for (const char* key :
+       {"method", "backend", "renderer", "width", "height", "lights", "load_ms", "render_ms",
+        "total_ms", "degenerate_triangles", "boundary_edges", "non_manifold_edges"}) {
     EXPECT_TRUE(stats.contains(key)) << key;
   }
   EXPECT_EQ(stats["method"], "reference");
   EXPECT_EQ(stats["lights"], 16);
   EXPECT_EQ(stats["width"], 80);
-  ASSERT_EQ(manylight("render " + scene + " -o " + (dir / "a.exr").string() + " --size 80x60").exitCode, 0);
+  ASSERT_EQ(
+      manylight("render " + scene + " -o " + (dir / "a.exr").string() + " --size 80x60").exitCode,
+      0);
   EXPECT_EQ(readImage((dir / "a.exr").string()).width, 80);
 }
 
@@ -111,11 +114,13 @@ double printed(const std::string& out, const std::string& name) {
     ADD_FAILURE() << "no '" << name << "' in:\n" << out;
     return std::nan("");
   }
-  return std::stod(out.substr(out.find(name + " = ", at == std::string::npos ? 0 : at) + name.size() + 3));
+  return std::stod(
+      out.substr(out.find(name + " = ", at == std::string::npos ? 0 : at) + name.size() + 3));
 }
 
 TEST(Cli, FitGammaPrintsTheUe4Fit) {
-  const std::string pairs = writeText("ue4.csv", "in,out\n255,5000\n216,3470\n171,2076\n123,1005\n85,445\n76,349\n59,200\n");
+  const std::string pairs = writeText(
+      "ue4.csv", "in,out\n255,5000\n216,3470\n171,2076\n123,1005\n85,445\n76,349\n59,200\n");
   const ProcessResult r = manylight("fit-gamma " + pairs);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NEAR(printed(r.out, "gamma"), 2.1996, 0.0005);
@@ -134,11 +139,13 @@ TEST(Cli, CalibrationMeasuresTheExactSrgbCurve) {
   // the exact sRGB curve, so the fit is the best power law for that curve over codes 11–255
   // (computed independently in double precision: γ = 1.965171) and strays from it by up
   // to 11 codes. A renderer that decoded with a 2.2 power would give γ = 2.2.
-  const ProcessResult r = manylight("fit-gamma --calibrate " + std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf");
+  const ProcessResult r =
+      manylight("fit-gamma --calibrate " + std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(printed(r.out, "pairs"), 245);
   EXPECT_NEAR(printed(r.out, "gamma"), 1.965171, 1e-4);
-  EXPECT_NE(r.out.find("largest difference from the sRGB curve = 11 codes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("largest difference from the sRGB curve = 11 codes"), std::string::npos)
+      << r.out;
 }
 
 TEST(Cli, PngCodesFollowTheExactSrgbEncoding) {
@@ -155,7 +162,8 @@ TEST(Cli, PngCodesFollowTheExactSrgbEncoding) {
   const fs::path scene = testFolder() / "gradient.gltf";
   b.write(scene.string());
   const fs::path out = testFolder() / "gradient.png";
-  const ProcessResult r = manylight("render " + scene.string() + " -o " + out.string() + " --size 256x2");
+  const ProcessResult r =
+      manylight("render " + scene.string() + " -o " + out.string() + " --size 256x2");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const Image png = readImage(out.string());
   int wrong = 0;
@@ -179,14 +187,15 @@ TEST(Cli, LightListsAddToTheScenesLights) {
   const std::string scene = roomScene(o);
   std::string csv = "x,y,z,r,g,b,brightness,radius\n";
   for (int i = 0; i < 40; ++i) {
-    csv += std::to_string(-4 + i % 8) + ",2," + std::to_string(-2 + i / 8) + "," + std::to_string(i * 6) +
-           ",76,216,3,6\n";
+    csv += std::to_string(-4 + i % 8) + ",2," + std::to_string(-2 + i / 8) + "," +
+           std::to_string(i * 6) + ",76,216,3,6\n";
   }
   const std::string list = writeText("list.csv", csv);
   const fs::path dir = testFolder();
   for (const char* method : {"reference", "lightcuts"}) {
-    const ProcessResult r = manylight("render " + scene + " --lights " + list + " -o " + (dir / "l.png").string() +
-                                      " --size 64x48 --method " + method + " --stats " + (dir / "s.json").string());
+    const ProcessResult r =
+        manylight("render " + scene + " --lights " + list + " -o " + (dir / "l.png").string() +
+                  " --size 64x48 --method " + method + " --stats " + (dir / "s.json").string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto stats = nlohmann::json::parse(readFile(dir / "s.json"));
     EXPECT_EQ(stats["lights"], 43);
@@ -207,9 +216,11 @@ TEST(Cli, LightListsAddToTheScenesLights) {
 TEST(Cli, CompareAssertsARenderAgainstAStoredImage) {
   const fs::path dir = testFolder();
   const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
-  const std::string a = (dir / "a.png").string(), b = (dir / "b.png").string(), small = (dir / "small.png").string();
+  const std::string a = (dir / "a.png").string(), b = (dir / "b.png").string(),
+                    small = (dir / "small.png").string();
   ASSERT_EQ(manylight("render " + scene + " -o " + a + " --size 64x48").exitCode, 0);
-  ASSERT_EQ(manylight("render " + scene + " -o " + b + " --size 64x48 --exposure 0.05").exitCode, 0);
+  ASSERT_EQ(manylight("render " + scene + " -o " + b + " --size 64x48 --exposure 0.05").exitCode,
+            0);
   ASSERT_EQ(manylight("render " + scene + " -o " + small + " --size 32x48").exitCode, 0);
 
   ProcessResult r = manylight("compare " + a + " " + a);
@@ -229,14 +240,18 @@ TEST(Cli, CompareAssertsARenderAgainstAStoredImage) {
 
   EXPECT_EQ(manylight("compare " + a + " " + b + " --max-abs 0.016").exitCode, 0);
   // Or allow the differing values as a share: below it fails, above it passes.
-  EXPECT_EQ(manylight("compare " + a + " " + b + " --max-fraction 0.1 --diff " + (dir / "d.png").string()).exitCode, 4);
+  EXPECT_EQ(
+      manylight("compare " + a + " " + b + " --max-fraction 0.1 --diff " + (dir / "d.png").string())
+          .exitCode,
+      4);
   EXPECT_TRUE(fs::exists(dir / "d.png"));
   EXPECT_EQ(manylight("compare " + a + " " + b + " --max-fraction 0.5").exitCode, 0);
   EXPECT_FALSE(fs::exists(diff)) << "no difference image when they match";
 
   r = manylight("compare " + a + " " + small);
   EXPECT_EQ(r.exitCode, 4);
-  EXPECT_NE(r.out.find("differ: 64x48 with 4 channels against 32x48 with 4"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("differ: 64x48 with 4 channels against 32x48 with 4"), std::string::npos)
+      << r.out;
   const std::string missing = (dir / "missing.png").string();
   r = manylight("compare " + a + " " + missing);
   EXPECT_EQ(r.exitCode, 1);
@@ -257,22 +272,26 @@ TEST(Cli, BatchesRenderEverySceneInOneProcess) {
   std::string list = scenes[0] + " " + bad;
   for (int i = 1; i < 4; ++i) list += " " + scenes[i];
   const fs::path out = dir / "thumbs";
-  const ProcessResult r = manylight("render " + list + " --out-dir " + out.string() + " --size 48x32 --stats " +
-                                    (dir / "batch.json").string());
+  const ProcessResult r = manylight("render " + list + " --out-dir " + out.string() +
+                                    " --size 48x32 --stats " + (dir / "batch.json").string());
   EXPECT_EQ(r.exitCode, 1) << "a failed scene makes the batch fail, at the end";
-  EXPECT_NE(r.err.find("manylight: " + bad + ": asset.version '1.0' is not supported, expected 2.x\n"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("manylight: " + bad + ": asset.version '1.0' is not supported, expected 2.x\n"),
+      std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("manylight: rendered 4 of 5 scenes into " + out.string() + ", 1 failed"), std::string::npos)
+  EXPECT_NE(r.err.find("manylight: rendered 4 of 5 scenes into " + out.string() + ", 1 failed"),
+            std::string::npos)
       << r.err;
   const auto stats = nlohmann::json::parse(readFile(dir / "batch.json"));
   EXPECT_EQ(stats["rendered"], 4);
   EXPECT_EQ(stats["failed"], 1);
-  EXPECT_EQ(stats["scenes"][1]["error"], bad + ": asset.version '1.0' is not supported, expected 2.x");
+  EXPECT_EQ(stats["scenes"][1]["error"],
+            bad + ": asset.version '1.0' is not supported, expected 2.x");
   // Each thumbnail is the image a process of its own renders, bit for bit.
   for (int i = 0; i < 4; ++i) {
     const fs::path single = dir / ("single" + std::to_string(i) + ".png");
-    ASSERT_EQ(manylight("render " + scenes[i] + " -o " + single.string() + " --size 48x32").exitCode, 0);
+    ASSERT_EQ(
+        manylight("render " + scenes[i] + " -o " + single.string() + " --size 48x32").exitCode, 0);
     EXPECT_EQ(readFile(out / ("room" + std::to_string(i) + ".png")), readFile(single)) << i;
   }
   EXPECT_FALSE(fs::exists(out / "broken.png"));
@@ -280,20 +299,27 @@ TEST(Cli, BatchesRenderEverySceneInOneProcess) {
   // Shards: every N-th scene from I, so N machines share a batch.
   const fs::path sharded = dir / "shard";
   const std::string good = scenes[0] + " " + scenes[1] + " " + scenes[2] + " " + scenes[3];
-  ASSERT_EQ(manylight("render " + good + " --out-dir " + sharded.string() + " --shard 1/2 --size 16x16 --format exr")
+  ASSERT_EQ(manylight("render " + good + " --out-dir " + sharded.string() +
+                      " --shard 1/2 --size 16x16 --format exr")
                 .exitCode,
             0);
   std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(sharded)) names.push_back(e.path().filename().string());
+  for (const auto& e : fs::directory_iterator(sharded))
+    names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"room1.exr", "room3.exr"}));
 
-  EXPECT_EQ(manylight("render " + list + " --out-dir " + sharded.string() + " --shard 2/2").exitCode, 2);
-  EXPECT_EQ(manylight("render " + scenes[0] + " " + scenes[1] + " -o " + (dir / "x.png").string()).exitCode, 2);
-  const ProcessResult twice = manylight("render " + scenes[0] + " " + scenes[0] + " --out-dir " + sharded.string());
+  EXPECT_EQ(
+      manylight("render " + list + " --out-dir " + sharded.string() + " --shard 2/2").exitCode, 2);
+  EXPECT_EQ(manylight("render " + scenes[0] + " " + scenes[1] + " -o " + (dir / "x.png").string())
+                .exitCode,
+            2);
+  const ProcessResult twice =
+      manylight("render " + scenes[0] + " " + scenes[0] + " --out-dir " + sharded.string());
   EXPECT_EQ(twice.exitCode, 1);
-  EXPECT_EQ(twice.err, "manylight: " + scenes[0] + ": would write " + (sharded / "room0.png").string() + ", as " +
-                           scenes[0] + " does; give scenes distinct names\n");
+  EXPECT_EQ(twice.err, "manylight: " + scenes[0] + ": would write " +
+                           (sharded / "room0.png").string() + ", as " + scenes[0] +
+                           " does; give scenes distinct names\n");
 }
 
 TEST(Cli, BakedScenesRenderAsTheirSources) {
@@ -301,7 +327,8 @@ TEST(Cli, BakedScenesRenderAsTheirSources) {
   o.lightCount = 200;
   const std::string scene = roomScene(o);
   const fs::path dir = testFolder();
-  const std::string list = writeText("extra.csv", "x,y,z,r,g,b,brightness\n0,2,0,255,76,216,2\n1,2,1,10,200,30,2\n");
+  const std::string list =
+      writeText("extra.csv", "x,y,z,r,g,b,brightness\n0,2,0,255,76,216,2\n1,2,1,10,200,30,2\n");
   const std::string baked = (dir / "room.mlbake").string();
   ProcessResult r = manylight("bake " + scene + " --lights " + list + " -o " + baked + " --stats " +
                               (dir / "bake.json").string());
@@ -311,10 +338,15 @@ TEST(Cli, BakedScenesRenderAsTheirSources) {
     SCOPED_TRACE(method);
     const std::string args = std::string(" --size 64x48 --method ") + method;
     const fs::path fromScene = dir / "scene.png", fromBake = dir / "bake.png";
-    ASSERT_EQ(manylight("render " + scene + " --lights " + list + " -o " + fromScene.string() + args).exitCode, 0);
-    r = manylight("render " + baked + " -o " + fromBake.string() + args + " --stats " + (dir / "s.json").string());
+    ASSERT_EQ(
+        manylight("render " + scene + " --lights " + list + " -o " + fromScene.string() + args)
+            .exitCode,
+        0);
+    r = manylight("render " + baked + " -o " + fromBake.string() + args + " --stats " +
+                  (dir / "s.json").string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(readFile(fromBake), readFile(fromScene)) << "a baked scene renders bit for bit as its source";
+    EXPECT_EQ(readFile(fromBake), readFile(fromScene))
+        << "a baked scene renders bit for bit as its source";
     const auto stats = nlohmann::json::parse(readFile(dir / "s.json"));
     EXPECT_EQ(stats["lights"], 202);
     if (std::string(method) != "reference") {
@@ -323,14 +355,18 @@ TEST(Cli, BakedScenesRenderAsTheirSources) {
   }
   r = manylight("render " + baked + " --lights " + list + " -o " + (dir / "x.png").string());
   EXPECT_EQ(r.exitCode, 1);
-  EXPECT_EQ(r.err, "manylight: " + baked + ": a baked scene's lights are baked in; bake it again with --lights\n");
-  r = manylight("render " + baked + " --tree-split longest-axis --method lightcuts -o " + (dir / "x.png").string());
+  EXPECT_EQ(r.err, "manylight: " + baked +
+                       ": a baked scene's lights are baked in; bake it again with --lights\n");
+  r = manylight("render " + baked + " --tree-split longest-axis --method lightcuts -o " +
+                (dir / "x.png").string());
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_EQ(r.err, "manylight: " + baked +
-                       ": baked with other --tree-split or --node-colour settings; bake it again to change them\n");
+                       ": baked with other --tree-split or --node-colour settings; bake it again "
+                       "to change them\n");
   r = manylight("render " + baked + " --light-budget 100 -o " + (dir / "x.png").string());
   EXPECT_EQ(r.exitCode, 1);
-  EXPECT_EQ(r.err, "manylight: " + baked + ": 202 lights exceed the light budget of 100 (--light-budget)\n");
+  EXPECT_EQ(r.err, "manylight: " + baked +
+                       ": 202 lights exceed the light budget of 100 (--light-budget)\n");
   // A damaged bake: one line, nothing written.
   std::string bytes = readFile(baked);
   bytes[bytes.size() / 2] ^= 1;
@@ -352,8 +388,8 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
   const fs::path dir = testFolder();
   const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
   const std::string frames = (dir / "frames" / "f%03d.png").string();
-  ProcessResult r = manylight("play " + scene + " -o " + frames + " --frames 4 --size 48x32 --stats " +
-                              (dir / "play.json").string());
+  ProcessResult r = manylight("play " + scene + " -o " + frames +
+                              " --frames 4 --size 48x32 --stats " + (dir / "play.json").string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto stats = nlohmann::json::parse(readFile(dir / "play.json"));
   EXPECT_EQ(stats["frames"], 4);
@@ -361,7 +397,10 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
   EXPECT_GT(stats["render_fps"].get<double>(), 0.0);
   // Frame 0 is the still render of the same camera, bit for bit; later frames have turned.
   const fs::path still = dir / "still.png";
-  ASSERT_EQ(manylight("render " + scene + " -o " + still.string() + " --size 48x32 --method lightcuts").exitCode, 0);
+  ASSERT_EQ(
+      manylight("render " + scene + " -o " + still.string() + " --size 48x32 --method lightcuts")
+          .exitCode,
+      0);
   EXPECT_EQ(readFile(dir / "frames" / "f000.png"), readFile(still));
   EXPECT_NE(readFile(dir / "frames" / "f002.png"), readFile(still));
   EXPECT_TRUE(fs::exists(dir / "frames" / "f003.png"));
@@ -369,7 +408,9 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
 
   // Raw frames on stdout: 4 × 48 × 32 RGBA8, the first equal to the PNG's codes.
   const fs::path raw = dir / "frames.rgba";
-  ASSERT_EQ(shell(std::string(MANYLIGHT_BIN) + " play " + scene + " -o - --frames 4 --size 48x32 > " + raw.string()), 0);
+  ASSERT_EQ(shell(std::string(MANYLIGHT_BIN) + " play " + scene +
+                  " -o - --frames 4 --size 48x32 > " + raw.string()),
+            0);
   const std::string bytes = readFile(raw);
   ASSERT_EQ(bytes.size(), 4u * 48 * 32 * 4);
   const Image first = readImage(still.string());
@@ -381,18 +422,21 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
 
   // A consumer that stops reading ends the playback cleanly, without hanging.
   EXPECT_EQ(shell(std::string(MANYLIGHT_BIN) + " play " + scene +
-                  " -o - --frames 100000 --size 48x32 2>/dev/null | head -c 100 > /dev/null; exit ${PIPESTATUS[0]}"),
+                  " -o - --frames 100000 --size 48x32 2>/dev/null | head -c 100 > /dev/null; exit "
+                  "${PIPESTATUS[0]}"),
             0);
   // So does Ctrl-C: every frame written is whole, and no temporary file is left.
   const fs::path stopped = dir / "stopped";
-  EXPECT_EQ(shell("timeout --preserve-status -s INT 3 " + std::string(MANYLIGHT_BIN) + " play " + scene + " -o " +
-                  (stopped / "%04d.png").string() + " --frames 100000 --size 48x32 2>/dev/null"),
-            130);
+  EXPECT_EQ(
+      shell("timeout --preserve-status -s INT 3 " + std::string(MANYLIGHT_BIN) + " play " + scene +
+            " -o " + (stopped / "%04d.png").string() + " --frames 100000 --size 48x32 2>/dev/null"),
+      130);
   int written = 0;
   for (const auto& e : fs::directory_iterator(stopped)) {
     ++written;
     EXPECT_EQ(e.path().extension(), ".png") << e.path();
-    EXPECT_EQ(e.path().filename().string().front() == '.', false) << "temporary file left: " << e.path();
+    EXPECT_EQ(e.path().filename().string().front() == '.', false)
+        << "temporary file left: " << e.path();
     EXPECT_EQ(readImage(e.path().string()).width, 48);
   }
   EXPECT_GT(written, 0);
@@ -405,8 +449,9 @@ TEST(Cli, PlaybackFollowsTheCameraAnimation) {
   // Keys at 0, 1 and 2 s; at 2 frames per second that is frames 0..4, the last on the last key.
   const std::string scene = animatedScene("animated");
   const fs::path dir = testFolder();
-  const ProcessResult r = manylight("play " + scene + " -o " + (dir / "a%d.png").string() +
-                                    " --fps 2 --size 32x24 --method reference --stats " + (dir / "p.json").string());
+  const ProcessResult r =
+      manylight("play " + scene + " -o " + (dir / "a%d.png").string() +
+                " --fps 2 --size 32x24 --method reference --stats " + (dir / "p.json").string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto stats = nlohmann::json::parse(readFile(dir / "p.json"));
   EXPECT_EQ(stats["frames"], 5);
@@ -421,10 +466,11 @@ TEST(Cli, FifosAreRefusedWithoutBlocking) {
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   const std::string bin = "timeout 20 " + std::string(MANYLIGHT_BIN);
   const std::string out = (testFolder() / "x.png").string();
-  for (const std::string& args : {"render " + fifo.string() + " -o " + out, "bake " + fifo.string() + " -o " +
-                                      (testFolder() / "x.mlbake").string(),
-                                  "compare " + fifo.string() + " " + fifo.string(), "fit-gamma " + fifo.string(),
-                                  "play " + fifo.string() + " -o " + (testFolder() / "%d.png").string()}) {
+  for (const std::string& args :
+       {"render " + fifo.string() + " -o " + out,
+        "bake " + fifo.string() + " -o " + (testFolder() / "x.mlbake").string(),
+        "compare " + fifo.string() + " " + fifo.string(), "fit-gamma " + fifo.string(),
+        "play " + fifo.string() + " -o " + (testFolder() / "%d.png").string()}) {
     SCOPED_TRACE(args);
     const std::string err = (testFolder() / "err.txt").string();
     EXPECT_EQ(shell(bin + " " + args + " 2>" + err), 1);
@@ -440,8 +486,10 @@ TEST(Cli, RerenderingIsBitIdenticalAndBackendsAgree) {
   for (const char* ext : {".png", ".exr"}) {
     std::vector<std::string> files;
     for (const char* backend : {"egl", "egl", "osmesa"}) {
-      const std::string out = (dir / (std::string(backend) + std::to_string(files.size()) + ext)).string();
-      const ProcessResult r = manylight("render " + scene + " -o " + out + " --size 96x64 --backend " + backend);
+      const std::string out =
+          (dir / (std::string(backend) + std::to_string(files.size()) + ext)).string();
+      const ProcessResult r =
+          manylight("render " + scene + " -o " + out + " --size 96x64 --backend " + backend);
       ASSERT_EQ(r.exitCode, 0) << r.err;
       files.push_back(readFile(out));
     }
@@ -491,21 +539,28 @@ const BadInput kBadInputs[] = {
      R"({"asset": {"version": "2.0"}, "nodes": [{"children": [2]}, {"children": [2]}, {}],
          "scenes": [{"nodes": [0, 1]}]})",
      "", "node 2 has two parents (nodes 0 and 1)"},
-    {"root-twice.gltf", R"({"asset": {"version": "2.0"}, "nodes": [{}], "scenes": [{"nodes": [0, 0]}]})", "",
+    {"root-twice.gltf",
+     R"({"asset": {"version": "2.0"}, "nodes": [{}], "scenes": [{"nodes": [0, 0]}]})", "",
      "node 0 is reached twice (a scene root listed twice, or also a child)"},
     {"view-past-buffer.gltf",
      R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "data:application/octet-stream;base64,AAAAAA==", "byteLength": 4}],
          "bufferViews": [{"buffer": 0, "byteOffset": 2, "byteLength": 4}]})",
      "", "bufferView 0: bytes 2..6 lie beyond its buffer's 4"},
-    {"escape.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "../secret.bin", "byteLength": 4}]})", "",
+    {"escape.gltf",
+     R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "../secret.bin", "byteLength": 4}]})", "",
      "URI '../secret.bin': leaves the scene's folder"},
-    {"encoded-escape.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "%2E%2E/secret.bin", "byteLength": 4}]})",
+    {"encoded-escape.gltf",
+     R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "%2E%2E/secret.bin", "byteLength": 4}]})",
      "", "URI '../secret.bin': leaves the scene's folder"},
-    {"absolute.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "/etc/passwd", "byteLength": 4}]})", "",
+    {"absolute.gltf",
+     R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "/etc/passwd", "byteLength": 4}]})", "",
      "URI '/etc/passwd': absolute paths are not allowed"},
-    {"scheme.gltf", R"({"asset": {"version": "2.0"}, "images": [{"uri": "http://example.com/a.png"}]})", "",
-     "URI 'http://example.com/a.png': scheme 'http' is not allowed (only data: URIs and relative paths)"},
-    {"missing-buffer.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "gone.bin", "byteLength": 4}]})", "",
+    {"scheme.gltf",
+     R"({"asset": {"version": "2.0"}, "images": [{"uri": "http://example.com/a.png"}]})", "",
+     "URI 'http://example.com/a.png': scheme 'http' is not allowed (only data: URIs and relative "
+     "paths)"},
+    {"missing-buffer.gltf",
+     R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "gone.bin", "byteLength": 4}]})", "",
      "URI 'gone.bin': no such file"},
     {"no-camera-5.gltf", R"({"asset": {"version": "2.0"}})", "--camera 5",
      "camera 5 does not exist (the scene has 0)"},
@@ -517,7 +572,8 @@ TEST(Cli, BadInputsFailWithOneLineAndNoOutput) {
     const fs::path path = testFolder() / b.name;
     if (b.json) writeText(b.name, b.json);
     const fs::path out = testFolder() / "out.png";
-    const ProcessResult r = manylight("render " + path.string() + " -o " + out.string() + " " + b.args);
+    const ProcessResult r =
+        manylight("render " + path.string() + " -o " + out.string() + " " + b.args);
     EXPECT_EQ(r.exitCode, 1);
     const std::string prefix = "manylight: " + path.string() + ": ";
     EXPECT_EQ(r.err.rfind(prefix, 0), 0u) << r.err;
@@ -538,9 +594,11 @@ TEST(Cli, LightcutsWritesCutStatistics) {
   o.lightCount = 300;
   const std::string scene = roomScene(o);
   const fs::path dir = testFolder();
-  const ProcessResult r = manylight("render " + scene + " -o " + (dir / "a.exr").string() +
-                                    " --size 64x48 --method lightcuts --error 0.05 --error-mode total --max-cut 500"
-                                    " --stats " + (dir / "stats.json").string());
+  const ProcessResult r =
+      manylight("render " + scene + " -o " + (dir / "a.exr").string() +
+                " --size 64x48 --method lightcuts --error 0.05 --error-mode total --max-cut 500"
+                " --stats " +
+                (dir / "stats.json").string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto stats = nlohmann::json::parse(readFile(dir / "stats.json"));
   EXPECT_EQ(stats["method"], "lightcuts");
@@ -566,8 +624,10 @@ TEST(Cli, LimitsRefuseScenesBeforeReadingThem) {
   };
   const Limit limits[] = {
       {"--max-triangles 100", "triangles exceed the limit of 100"},
-      {"--max-texture-size 4", "image 0: cannot decode image: 8x8 exceeds the texture dimension limit of 4"},
-      {"--max-texture-pixels 63", "image 0: cannot decode image: 8x8 exceeds the texture limit of 63 pixels"},
+      {"--max-texture-size 4",
+       "image 0: cannot decode image: 8x8 exceeds the texture dimension limit of 4"},
+      {"--max-texture-pixels 63",
+       "image 0: cannot decode image: 8x8 exceeds the texture limit of 63 pixels"},
       {"--max-file-bytes 100", "the scene's files exceed the limit of 100 bytes"},
       {"--light-budget 1", "2 lights exceed the light budget of 1 (--light-budget)"},
   };
@@ -602,7 +662,8 @@ TEST(Cli, UnwritableOutputLeavesNothing) {
   const ProcessResult r = manylight("render " + scene + " -o " + out + " --size 16x16");
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("manylight: " + out + ": "), std::string::npos) << r.err;
-  const ProcessResult bad = manylight("render " + scene + " -o " + (testFolder() / "x.bmp").string());
+  const ProcessResult bad =
+      manylight("render " + scene + " -o " + (testFolder() / "x.bmp").string());
   EXPECT_EQ(bad.err, "manylight: " + (testFolder() / "x.bmp").string() +
                          ": unsupported output format, expected .png or .exr\n");
   EXPECT_FALSE(fs::exists(testFolder() / "x.bmp"));

@@ -1,11 +1,11 @@
 // Colour fidelity without GL: light lists with 8-bit sRGB colours (scene/light_list.h),
 // linear sums in the light tree, the power-law fit (bake/colour_fit.h) and the compact node
 // colour codings (bake/node_colour.h).
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <fstream>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "bake/colour_fit.h"
 #include "bake/light_tree.h"
@@ -44,7 +44,8 @@ std::string listError(const std::string& path, std::size_t budget = 1000) {
 
 // The UE4 work's example line, and the same light in the other two formats.
 const char* kDumpLine =
-    "GUID C2C14DFC4DDFAFF43D562F8AE934C28C - Position X=-300.000 Y=0.000 Z=150.000 W=1.000 - Radius 250 - "
+    "GUID C2C14DFC4DDFAFF43D562F8AE934C28C - Position X=-300.000 Y=0.000 Z=150.000 W=1.000 - "
+    "Radius 250 - "
     "Color (R=255,G=76,B=216,A=0) - Brightness = 5000\n";
 
 void expectTheExampleLight(const Light& l) {
@@ -60,11 +61,14 @@ void expectTheExampleLight(const Light& l) {
 }
 
 TEST(LightList, TheThreeFormatsGiveTheSameLight) {
-  const auto dump = readList(writeFile("lights.txt", std::string("# exported from UE4\n\n") + kDumpLine));
-  const auto csv = readList(writeFile("lights.csv", "x,y,z,r,g,b,brightness,radius,falloff\n"
-                                                    "-300,0,150,255,76,216,5000,250,inverse-square\n"));
+  const auto dump =
+      readList(writeFile("lights.txt", std::string("# exported from UE4\n\n") + kDumpLine));
+  const auto csv = readList(writeFile("lights.csv",
+                                      "x,y,z,r,g,b,brightness,radius,falloff\n"
+                                      "-300,0,150,255,76,216,5000,250,inverse-square\n"));
   const auto json = readList(writeFile(
-      "lights.json", R"({"lights": [{"position": [-300, 0, 150], "color": [255, 76, 216], "brightness": 5000,
+      "lights.json",
+      R"({"lights": [{"position": [-300, 0, 150], "color": [255, 76, 216], "brightness": 5000,
                      "radius": 250, "falloff": "inverse-square"}]})"));
   for (const auto* lights : {&dump, &csv, &json}) {
     ASSERT_EQ(lights->size(), 1u);
@@ -74,12 +78,14 @@ TEST(LightList, TheThreeFormatsGiveTheSameLight) {
 
 TEST(LightList, OptionalColumnsAndKeys) {
   // Columns in any order, radius and falloff optional (no radius: infinite range).
-  const auto csv = readList(writeFile("any-order.csv", "brightness,b,g,r,z,y,x\n2,0,0,255,3,2,1\n"));
+  const auto csv =
+      readList(writeFile("any-order.csv", "brightness,b,g,r,z,y,x\n2,0,0,255,3,2,1\n"));
   ASSERT_EQ(csv.size(), 1u);
   EXPECT_EQ(csv[0].position, glm::vec3(1, 2, 3));
   EXPECT_EQ(csv[0].colour, glm::vec3(1, 0, 0));
   EXPECT_EQ(csv[0].range, 0.0f);
-  const auto json = readList(writeFile("array.json", R"([{"position": [1, 2, 3], "color": [0, 0, 0], "brightness": 0}])"));
+  const auto json = readList(
+      writeFile("array.json", R"([{"position": [1, 2, 3], "color": [0, 0, 0], "brightness": 0}])"));
   ASSERT_EQ(json.size(), 1u);
   EXPECT_EQ(json[0].colour, glm::vec3(0.0f));
 }
@@ -91,28 +97,43 @@ struct BadList {
 };
 
 const BadList kBadLists[] = {
-    {"short.txt", "GUID AB - Position X=1 Y=2 Z=3 - Radius 250 - Color (R=1,G=2,B=3) - Brightness = 5\nGUID AB - Position X=1 Y=2\n",
+    {"short.txt",
+     "GUID AB - Position X=1 Y=2 Z=3 - Radius 250 - Color (R=1,G=2,B=3) - Brightness = 5\nGUID AB "
+     "- Position X=1 Y=2\n",
      ":2: expected 'Z=', got the end of the line"},
-    {"word.txt", "\n\nGUID AB - Position X=1 Y=2 Z=3 - Radius 250 - Color (R=1,G=2,B=3) - Brightness = lots\n",
+    {"word.txt",
+     "\n\nGUID AB - Position X=1 Y=2 Z=3 - Radius 250 - Color (R=1,G=2,B=3) - Brightness = lots\n",
      ":3: expected a number for Brightness, got 'lots'"},
-    {"code.txt", "GUID AB - Position X=1 Y=2 Z=3 - Radius 250 - Color (R=256,G=2,B=3) - Brightness = 5\n",
+    {"code.txt",
+     "GUID AB - Position X=1 Y=2 Z=3 - Radius 250 - Color (R=256,G=2,B=3) - Brightness = 5\n",
      ":1: colour R must be an integer code 0..255, got 256.000000"},
-    {"radius.txt", "GUID AB - Position X=1 Y=2 Z=3 - Radius 0 - Color (R=1,G=2,B=3) - Brightness = 5\n",
+    {"radius.txt",
+     "GUID AB - Position X=1 Y=2 Z=3 - Radius 0 - Color (R=1,G=2,B=3) - Brightness = 5\n",
      ":1: radius must be > 0"},
-    {"tail.txt", "GUID AB - Position X=1 Y=2 Z=3 - Radius 1 - Color (R=1,G=2,B=3) - Brightness = 5 extra\n",
+    {"tail.txt",
+     "GUID AB - Position X=1 Y=2 Z=3 - Radius 1 - Color (R=1,G=2,B=3) - Brightness = 5 extra\n",
      ":1: expected the end of the line, got 'extra'"},
-    {"nan.csv", "x,y,z,r,g,b,brightness\n0,0,0,1,1,1,1\n0,nan,0,1,1,1,1\n", ":3: y: expected a number, got 'nan'"},
+    {"nan.csv", "x,y,z,r,g,b,brightness\n0,0,0,1,1,1,1\n0,nan,0,1,1,1,1\n",
+     ":3: y: expected a number, got 'nan'"},
     {"fields.csv", "x,y,z,r,g,b,brightness\n0,0,0,1,1,1\n", ":2: expected 7 fields, got 6"},
-    {"header.csv", "x,y,z,r,g,b\n", ":1: the header has no column 'brightness'; expected x,y,z,r,g,b,brightness[,radius][,falloff]"},
-    {"column.csv", "x,y,z,r,g,b,brightness,colour\n", ":1: unknown column 'colour'; expected x,y,z,r,g,b,brightness[,radius][,falloff]"},
+    {"header.csv", "x,y,z,r,g,b\n",
+     ":1: the header has no column 'brightness'; expected "
+     "x,y,z,r,g,b,brightness[,radius][,falloff]"},
+    {"column.csv", "x,y,z,r,g,b,brightness,colour\n",
+     ":1: unknown column 'colour'; expected x,y,z,r,g,b,brightness[,radius][,falloff]"},
     {"falloff.csv", "x,y,z,r,g,b,brightness,falloff\n0,0,0,1,1,1,1,exponent-8\n",
      ":2: falloff 'exponent-8' is not modelled; only inverse-square (glTF's) is"},
-    {"fraction.csv", "x,y,z,r,g,b,brightness\n0,0,0,0.5,1,1,1\n", ":2: colour R must be an integer code 0..255, got 0.500000"},
-    {"negative.csv", "x,y,z,r,g,b,brightness\n0,0,0,1,1,1,-1\n", ":2: brightness must be a finite number >= 0, got -1.000000"},
-    {"syntax.json", "[{\"position\": [1, 2, 3],\n \"color\": }]", ": parse error at line 2, column 11: syntax error while parsing value - unexpected '}'; expected '[', '{', or a literal"},
+    {"fraction.csv", "x,y,z,r,g,b,brightness\n0,0,0,0.5,1,1,1\n",
+     ":2: colour R must be an integer code 0..255, got 0.500000"},
+    {"negative.csv", "x,y,z,r,g,b,brightness\n0,0,0,1,1,1,-1\n",
+     ":2: brightness must be a finite number >= 0, got -1.000000"},
+    {"syntax.json", "[{\"position\": [1, 2, 3],\n \"color\": }]",
+     ": parse error at line 2, column 11: syntax error while parsing value - unexpected '}'; "
+     "expected '[', '{', or a literal"},
     {"key.json", R"([{"position": [1, 2, 3], "color": [1, 2, 3], "brightness": 1, "radious": 3}])",
      ": light 0: unknown key 'radious'; expected position, color, brightness, radius, falloff"},
-    {"missing.json", R"({"lights": [{"position": [1, 2, 3], "brightness": 1}]})", ": light 0: no color"},
+    {"missing.json", R"({"lights": [{"position": [1, 2, 3], "brightness": 1}]})",
+     ": light 0: no color"},
     {"object.json", R"({"light": []})", ": expected an array of lights or {\"lights\": [...]}"},
 };
 
@@ -142,7 +163,8 @@ TEST(LightList, TheBudgetCountsTheSceneAndTheList) {
     appendLightList(path, scene, options);
     ADD_FAILURE() << "no error";
   } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()), path + ": 5 lights and the scene's 2 exceed the light budget of 6 (--light-budget)");
+    EXPECT_EQ(std::string(e.what()),
+              path + ": 5 lights and the scene's 2 exceed the light budget of 6 (--light-budget)");
   }
   EXPECT_EQ(scene.lights.size(), 2u) << "nothing added";
 }
@@ -151,7 +173,8 @@ TEST(LightList, ClusterColoursAreSumsOfLinearColours) {
   // Two lights of one cluster, 8-bit colours from a list. The tree's root holds the sum of
   // their exact linear colours; summing the encoded codes first (then decoding, as a
   // renderer working in sRGB would) gives a visibly different, wrong colour.
-  const auto lights = readList(writeFile("two.csv", "x,y,z,r,g,b,brightness\n0,0,0,200,40,10,1\n1,0,0,10,40,200,1\n"));
+  const auto lights = readList(
+      writeFile("two.csv", "x,y,z,r,g,b,brightness\n0,0,0,200,40,10,1\n1,0,0,10,40,200,1\n"));
   const LightTree tree = buildLightTrees(lights)[0];
   const glm::vec3 root = tree.nodes[0].intensity;
   for (int c = 0; c < 3; ++c) {
@@ -198,7 +221,8 @@ TEST(PowerFit, UnfittableInputIsRefused) {
     return std::string("(no error)");
   };
   EXPECT_EQ(message({{2, 3}, {2, 4}}), "a power-law fit needs at least two different inputs");
-  EXPECT_EQ(message({{0, 3}, {2, 4}}), "cannot fit the pair (0.000000, 3.000000): both values must be finite and > 0");
+  EXPECT_EQ(message({{0, 3}, {2, 4}}),
+            "cannot fit the pair (0.000000, 3.000000): both values must be finite and > 0");
   const std::string path = writeFile("pairs.csv", "in,out\n1,2\n3,x\n");
   try {
     readFitPairs(path);
@@ -230,7 +254,8 @@ TEST(NodeColour, EveryCodingStaysWithinItsSlack) {
       const double largest = std::max(d.r, std::max(d.g, d.b));
       EXPECT_GT(largest, 0.0) << "a light is never lost";
       for (int k = 0; k < 3; ++k) {
-        EXPECT_LE(std::abs(double(d[k]) - c[k]), coder.slack * largest + coder.slackFloor) << int(coding);
+        EXPECT_LE(std::abs(double(d[k]) - c[k]), coder.slack * largest + coder.slackFloor)
+            << int(coding);
       }
     }
     for (int k = 0; k < 3; ++k) {
@@ -244,7 +269,8 @@ TEST(NodeColour, Rgb9e5IsTheMoreAccurate) {
   // Measured on node-like colours: 9-bit mantissas round to within 1/512 of the largest
   // channel; 8-bit codes on a γ ≈ 2.2 curve to within about γ/(2·186) in the top octave.
   const auto colours = nodeLikeColours();
-  const NodeColourCoder rgb9e5(NodeColourCoding::Rgb9e5, colours), fitted(NodeColourCoding::Fitted, colours);
+  const NodeColourCoder rgb9e5(NodeColourCoding::Rgb9e5, colours),
+      fitted(NodeColourCoding::Fitted, colours);
   EXPECT_LT(rgb9e5.slack, 0.0021);
   EXPECT_LT(fitted.slack, 0.0075);
   EXPECT_LT(rgb9e5.slack, fitted.slack);

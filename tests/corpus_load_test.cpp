@@ -2,10 +2,10 @@
 // through the loader alone, no GL: it
 // loads, or fails with a one-line SceneError naming the file. This is the walk the
 // sanitizer build runs (ci/sanitize.sh); corpus_gltest.cpp renders the same files.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <iostream>
-
-#include <gtest/gtest.h>
 
 #include "scene/error.h"
 #include "scene/gltf_loader.h"
@@ -31,7 +31,8 @@ TEST(CorpusLoad, EveryFileLoadsOrFailsCleanly) {
       EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
   }
-  std::cout << "corpus: " << tried << " files, " << loaded << " loaded, " << rejected << " rejected\n";
+  std::cout << "corpus: " << tried << " files, " << loaded << " loaded, " << rejected
+            << " rejected\n";
   EXPECT_GT(loaded, 0);  // at least the project's own sample scene
 }
 

@@ -16,7 +16,8 @@ namespace {
 
 const std::filesystem::path& folder() {
   static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("manylight-fuzz-baked-" + std::to_string(::getpid()));
+    auto d = std::filesystem::temp_directory_path() /
+             ("manylight-fuzz-baked-" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
     return d;
   }();
@@ -33,7 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::memcpy(&file[8], &version, 4);
   const std::uint64_t total = file.size();
   std::memcpy(&file[16], &total, 8);
-  const std::uint64_t sum = manylight::bakedChecksum(std::string_view(file).substr(manylight::kBakedHeaderBytes));
+  const std::uint64_t sum =
+      manylight::bakedChecksum(std::string_view(file).substr(manylight::kBakedHeaderBytes));
   std::memcpy(&file[24], &sum, 8);
   const auto path = folder() / "input.mlbake";
   std::ofstream(path, std::ios::binary | std::ios::trunc) << file;

@@ -1,10 +1,10 @@
 // The half-edge structure (scene/half_edge.h) on hand-made meshes.
-#include <cmath>
+#include "scene/half_edge.h"
 
-#include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
-#include "scene/half_edge.h"
+#include <cmath>
+#include <glm/gtc/constants.hpp>
 
 namespace manylight {
 namespace {
@@ -40,7 +40,8 @@ TestMesh grid(int n) {
   }
   for (int y = 0; y < n; ++y) {
     for (int x = 0; x < n; ++x) {
-      const std::uint32_t a = std::uint32_t(y * (n + 1) + x), b = a + 1, c = a + n + 2, d = a + n + 1;
+      const std::uint32_t a = std::uint32_t(y * (n + 1) + x), b = a + 1, c = a + n + 2,
+                          d = a + n + 1;
       for (std::uint32_t i : {a, b, c, a, c, d}) m.indices.push_back(i);
     }
   }
@@ -63,7 +64,8 @@ TEST(HalfEdge, CubeIsClosedWithTwelveFacesAndFaceNormals) {
     EXPECT_EQ(m.halfEdges[h.twin].twin, &h - m.halfEdges.data());
     EXPECT_EQ(m.halfEdges[h.next].face, h.face);
   }
-  for (std::size_t v = 0; v < m.vertexIncoming.size(); ++v) EXPECT_EQ(m.halfEdges[m.vertexIncoming[v]].target, int(v));
+  for (std::size_t v = 0; v < m.vertexIncoming.size(); ++v)
+    EXPECT_EQ(m.halfEdges[m.vertexIncoming[v]].target, int(v));
   // 90° edges are creases at the default 60°: every corner gets its face's normal.
   const CreasedNormals n = creasedNormals(m, c.positions, glm::radians(60.0f));
   ASSERT_EQ(n.indices.size(), 36u);
@@ -71,7 +73,8 @@ TEST(HalfEdge, CubeIsClosedWithTwelveFacesAndFaceNormals) {
     const glm::vec3 a = c.positions[c.indices[3 * f]], b = c.positions[c.indices[3 * f + 1]],
                     d = c.positions[c.indices[3 * f + 2]];
     const glm::vec3 face = glm::normalize(glm::cross(b - a, d - a));
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(glm::dot(n.normals[n.indices[3 * f + k]], face), 1.0f, 1e-6f);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(glm::dot(n.normals[n.indices[3 * f + k]], face), 1.0f, 1e-6f);
   }
   EXPECT_EQ(n.source.size(), 24u);  // the 24 input vertices, one normal each
 }
@@ -89,7 +92,8 @@ TEST(HalfEdge, OpenGridHasItsPerimeterAsBoundary) {
 
 TEST(HalfEdge, BowTieEdgeSharedByThreeFacesIsNonManifold) {
   // Three triangles on the edge (0,0,0)–(1,0,0), fanned around it.
-  const std::vector<glm::vec3> p = {{0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1}};
+  const std::vector<glm::vec3> p = {
+      {0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1}};
   const std::vector<std::uint32_t> idx = {0, 1, 2, 1, 0, 3, 0, 1, 4};
   const HalfEdgeMesh m = buildHalfEdgeMesh(p, idx);
   EXPECT_EQ(m.nonManifoldEdges, 1);
@@ -103,9 +107,11 @@ TEST(HalfEdge, DegenerateTrianglesAreDropped) {
   TestMesh g = grid(1);
   g.positions.push_back(g.positions[0]);  // a duplicate of vertex 0: welded to it
   const std::uint32_t dup = std::uint32_t(g.positions.size() - 1);
-  for (std::uint32_t i : {0u, 0u, 1u, 0u, dup, 2u, 0u, 1u, 1u}) g.indices.push_back(i);  // repeated indices
+  for (std::uint32_t i : {0u, 0u, 1u, 0u, dup, 2u, 0u, 1u, 1u})
+    g.indices.push_back(i);  // repeated indices
   g.positions.push_back({2, 0, 0});
-  for (std::uint32_t i : {0u, 1u, std::uint32_t(g.positions.size() - 1)}) g.indices.push_back(i);  // collinear
+  for (std::uint32_t i : {0u, 1u, std::uint32_t(g.positions.size() - 1)})
+    g.indices.push_back(i);  // collinear
   const HalfEdgeMesh m = buildHalfEdgeMesh(g.positions, g.indices);
   EXPECT_EQ(m.degenerateTriangles, 4);
   EXPECT_EQ(m.faceEdge.size(), 2u);
@@ -118,15 +124,18 @@ TEST(HalfEdge, SphereNormalsAreSmooth) {
   const int rings = 16, segments = 32;
   for (int r = 0; r <= rings; ++r) {
     for (int k = 0; k <= segments; ++k) {
-      const float theta = glm::pi<float>() * r / rings, phi = 2.0f * glm::pi<float>() * (k % segments) / segments;
-      glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      const float theta = glm::pi<float>() * r / rings,
+                  phi = 2.0f * glm::pi<float>() * (k % segments) / segments;
+      glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta),
+                  std::sin(theta) * std::sin(phi));
       if (r == 0 || r == rings) p = {0.0f, r == 0 ? 1.0f : -1.0f, 0.0f};  // exact poles
       s.positions.push_back(p);  // the seam (k = segments) repeats k = 0 bit for bit
     }
   }
   for (int r = 0; r < rings; ++r) {
     for (int k = 0; k < segments; ++k) {
-      const std::uint32_t a = r * (segments + 1) + k, b = a + 1, c = a + segments + 2, d = a + segments + 1;
+      const std::uint32_t a = r * (segments + 1) + k, b = a + 1, c = a + segments + 2,
+                          d = a + segments + 1;
       for (std::uint32_t i : {a, b, c, a, c, d}) s.indices.push_back(i);
     }
   }

@@ -1,12 +1,13 @@
 // Light trees (bake/light_tree.h) and their packing: layout, padding, bounds, sums,
 // representatives, determinism.
+#include "bake/light_tree.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstring>
 #include <map>
 
-#include <gtest/gtest.h>
-
-#include "bake/light_tree.h"
 #include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
 #include "scene/scene_builder.h"
@@ -55,14 +56,16 @@ void checkTree(const LightTree& tree, const std::vector<Light>& lights, const Li
     EXPECT_EQ(n.empty(), a.empty() && b.empty()) << "node " << i;
     if (n.empty()) continue;
     EXPECT_TRUE(n.representative == a.representative || n.representative == b.representative);
-    const glm::vec3 sum = (a.empty() ? glm::vec3(0.0f) : a.intensity) + (b.empty() ? glm::vec3(0.0f) : b.intensity);
+    const glm::vec3 sum =
+        (a.empty() ? glm::vec3(0.0f) : a.intensity) + (b.empty() ? glm::vec3(0.0f) : b.intensity);
     EXPECT_NEAR(n.intensity.r, sum.r, 1e-5f * sum.r + 1e-7f);
     for (const LightTreeNode* c : {&a, &b}) {
       if (c->empty()) continue;
       EXPECT_TRUE(inside(c->boxMin, n) && inside(c->boxMax, n)) << "node " << i;
       if (tree.type == LightType::Spot) {
         const double angle = std::acos(std::clamp(
-            glm::dot(glm::normalize(glm::dvec3(n.axis)), glm::normalize(glm::dvec3(c->axis))), -1.0, 1.0));
+            glm::dot(glm::normalize(glm::dvec3(n.axis)), glm::normalize(glm::dvec3(c->axis))), -1.0,
+            1.0));
         EXPECT_LE(angle + c->spread, n.spread + 1e-7) << "cone of node " << i;  // acos rounding
         EXPECT_GE(n.outerAngle, c->outerAngle);
       }

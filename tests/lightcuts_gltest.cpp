@@ -1,10 +1,10 @@
 // Lightcuts against the GPU reference method: the `total` rule's guarantee, and the `node`
 // rule's measured errors, on light layouts chosen to break cuts.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <iostream>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
@@ -28,7 +28,9 @@ enum class Layout { Uniform, Clustered, Coincident, WideIntensities, Far, Mixed,
 std::vector<Light> makeLights(Layout layout, int count, std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  auto inRoom = [&] { return glm::vec3(-4.5f + 9.0f * u(rng), 0.3f + 4.0f * u(rng), -4.5f + 9.0f * u(rng)); };
+  auto inRoom = [&] {
+    return glm::vec3(-4.5f + 9.0f * u(rng), 0.3f + 4.0f * u(rng), -4.5f + 9.0f * u(rng));
+  };
   std::vector<glm::vec3> centres;
   for (int k = 0; k < 12; ++k) centres.push_back(inRoom());
   std::vector<Light> lights(count);
@@ -58,12 +60,14 @@ std::vector<Light> makeLights(Layout layout, int count, std::uint32_t seed) {
       case Layout::EightBitColours: {
         // As a light list gives them: 8-bit sRGB codes, often saturated, decoded exactly.
         std::uniform_int_distribution<int> code(0, 255);
-        for (int c = 0; c < 3; ++c) l.colour[c] = float(decodeSrgb8(std::uint8_t(i % 4 == c ? 0 : code(rng))));
+        for (int c = 0; c < 3; ++c)
+          l.colour[c] = float(decodeSrgb8(std::uint8_t(i % 4 == c ? 0 : code(rng))));
         break;
       }
       case Layout::Mixed:
         l.type = LightType(i % 3);
-        l.direction = glm::normalize(glm::vec3(-3.0f + 6.0f * u(rng), 0.0f, -3.0f + 6.0f * u(rng)) - l.position);
+        l.direction = glm::normalize(glm::vec3(-3.0f + 6.0f * u(rng), 0.0f, -3.0f + 6.0f * u(rng)) -
+                                     l.position);
         if (l.type == LightType::Spot) {
           l.outerConeAngle = 0.35f + 0.5f * u(rng);
           l.innerConeAngle = 0.6f * l.outerConeAngle;
@@ -87,7 +91,8 @@ struct Errors {
 
 // Per pixel: max over channels of |cut − reference| / max over channels of reference.
 Errors compareWithReference(const Scene& room, const std::vector<Light>& lights, ErrorMode mode,
-                            double epsilon, const std::string& name, Method method = Method::Lightcuts,
+                            double epsilon, const std::string& name,
+                            Method method = Method::Lightcuts,
                             NodeColourCoding coding = NodeColourCoding::Rgb9e5) {
   Scene scene = room;
   scene.lights = lights;
@@ -128,8 +133,8 @@ Errors compareWithReference(const Scene& room, const std::vector<Light>& lights,
     e.p99 = relative[std::size_t(0.99 * double(relative.size() - 1))];
   }
   std::cout << name << ": " << e.compared << " pixels, worst " << e.worst << ", p99 " << e.p99
-            << ", average cut " << e.averageCut << ", at max cut " << e.atMaxCut << ", node colour slack "
-            << cut.nodeColour.slack << "\n";
+            << ", average cut " << e.averageCut << ", at max cut " << e.atMaxCut
+            << ", node colour slack " << cut.nodeColour.slack << "\n";
   return e;
 }
 
@@ -162,22 +167,31 @@ struct Case {
 };
 
 const Case kCases[] = {
-    {"uniform-4096", Layout::Uniform, 4096},       {"clustered-4096", Layout::Clustered, 4096},
-    {"coincident-1000", Layout::Coincident, 1000}, {"wide-intensities-2000", Layout::WideIntensities, 2000},
-    {"far-1000", Layout::Far, 1000},               {"mixed-3000", Layout::Mixed, 3000},
-    {"count-1", Layout::Mixed, 1},                 {"count-2", Layout::Mixed, 2},
-    {"count-3", Layout::Mixed, 3},                 {"count-1023", Layout::Uniform, 1023},
-    {"count-1025", Layout::Uniform, 1025},         {"count-prime-1009", Layout::Mixed, 1009},
-    {"mixed-specular-2000", Layout::Mixed, 2000, true},  {"eight-bit-colours-4096", Layout::EightBitColours, 4096},
+    {"uniform-4096", Layout::Uniform, 4096},
+    {"clustered-4096", Layout::Clustered, 4096},
+    {"coincident-1000", Layout::Coincident, 1000},
+    {"wide-intensities-2000", Layout::WideIntensities, 2000},
+    {"far-1000", Layout::Far, 1000},
+    {"mixed-3000", Layout::Mixed, 3000},
+    {"count-1", Layout::Mixed, 1},
+    {"count-2", Layout::Mixed, 2},
+    {"count-3", Layout::Mixed, 3},
+    {"count-1023", Layout::Uniform, 1023},
+    {"count-1025", Layout::Uniform, 1025},
+    {"count-prime-1009", Layout::Mixed, 1009},
+    {"mixed-specular-2000", Layout::Mixed, 2000, true},
+    {"eight-bit-colours-4096", Layout::EightBitColours, 4096},
 };
 
 // Every case of kCases through `method` and `mode` (ε = 0.02), printed under `prefix`.
-std::vector<Errors> runCases(const Scene& room, const Scene& specularRoom, Method method, ErrorMode mode,
-                             const std::string& prefix, NodeColourCoding coding = NodeColourCoding::Rgb9e5) {
+std::vector<Errors> runCases(const Scene& room, const Scene& specularRoom, Method method,
+                             ErrorMode mode, const std::string& prefix,
+                             NodeColourCoding coding = NodeColourCoding::Rgb9e5) {
   std::vector<Errors> all;
   for (const Case& c : kCases) {
-    all.push_back(compareWithReference(c.specular ? specularRoom : room, makeLights(c.layout, c.count, 7), mode,
-                                       0.02, prefix + c.name, method, coding));
+    all.push_back(compareWithReference(c.specular ? specularRoom : room,
+                                       makeLights(c.layout, c.count, 7), mode, 0.02,
+                                       prefix + c.name, method, coding));
   }
   return all;
 }
@@ -195,24 +209,27 @@ void expectTotalRuleHolds(const std::vector<Errors>& all) {
 // Node colours are stored compactly (bake/node_colour.h); the guarantee holds with either
 // coding, because the bounds are widened by the coding's slack.
 TEST_F(LightcutsTest, TotalRuleErrorIsWithinEpsilonOfTheReference) {
-  expectTotalRuleHolds(runCases(*room_, *specularRoom_, Method::Lightcuts, ErrorMode::Total, "total/"));
+  expectTotalRuleHolds(
+      runCases(*room_, *specularRoom_, Method::Lightcuts, ErrorMode::Total, "total/"));
 }
 
 TEST_F(LightcutsTest, TotalRuleHoldsWithFittedNodeColours) {
-  expectTotalRuleHolds(runCases(*room_, *specularRoom_, Method::Lightcuts, ErrorMode::Total, "total-fitted/",
-                                NodeColourCoding::Fitted));
+  expectTotalRuleHolds(runCases(*room_, *specularRoom_, Method::Lightcuts, ErrorMode::Total,
+                                "total-fitted/", NodeColourCoding::Fitted));
 }
 
 TEST_F(LightcutsTest, NodeRuleErrorsAreMeasured) {
   // The paper's rule guarantees nothing; its errors are printed for the record.
-  for (const Errors& e : runCases(*room_, *specularRoom_, Method::Lightcuts, ErrorMode::Node, "node/")) {
+  for (const Errors& e :
+       runCases(*room_, *specularRoom_, Method::Lightcuts, ErrorMode::Node, "node/")) {
     EXPECT_GT(e.compared, 0);
   }
 }
 
 TEST_F(LightcutsTest, DistanceCriterionErrorsAreMeasured) {
   // Nor does the cheaper criterion.
-  for (const Errors& e : runCases(*room_, *specularRoom_, Method::LightcutsDistance, ErrorMode::Node, "distance/")) {
+  for (const Errors& e :
+       runCases(*room_, *specularRoom_, Method::LightcutsDistance, ErrorMode::Node, "distance/")) {
     EXPECT_GT(e.compared + e.atMaxCut, 0);
   }
 }

@@ -119,7 +119,8 @@ bool OracleImage::interior(int x, int y) const {
 OracleImage renderOracle(const Scene& scene, const Camera& camera, const std::vector<Light>& lights,
                          int width, int height, glm::dvec3 ambient) {
   const View view = makeView(camera, width, height);
-  const glm::dmat4 inverseViewProjection = glm::inverse(glm::dmat4(view.projection) * glm::dmat4(view.view));
+  const glm::dmat4 inverseViewProjection =
+      glm::inverse(glm::dmat4(view.projection) * glm::dmat4(view.view));
   const glm::dvec3 eye(view.eye), forward = glm::normalize(glm::dvec3(view.forward));
   const std::vector<Triangle> tris = worldTriangles(scene);
   const Material fallback = defaultMaterial();
@@ -132,7 +133,8 @@ OracleImage renderOracle(const Scene& scene, const Camera& camera, const std::ve
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       // Pixel centre in normalised device coordinates (image row 0 is GL's top row).
-      const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (height - 1 - y + 0.5) / height * 2.0 - 1.0);
+      const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0,
+                           (height - 1 - y + 0.5) / height * 2.0 - 1.0);
       auto unproject = [&](double z) {
         const glm::dvec4 p = inverseViewProjection * glm::dvec4(ndc, z, 1.0);
         return glm::dvec3(p) / p.w;

@@ -12,8 +12,8 @@
 namespace manylight::testing {
 
 struct OracleImage {
-  Image image;                   // linear radiance, alpha = coverage
-  std::vector<int> surface;      // per pixel: index of the (instance, primitive) hit, −1: none
+  Image image;               // linear radiance, alpha = coverage
+  std::vector<int> surface;  // per pixel: index of the (instance, primitive) hit, −1: none
   // True where the 3×3 neighbourhood sees one surface: rasterisation and ray casting agree
   // there on which surface a pixel shows (silhouettes are left out of comparisons).
   bool interior(int x, int y) const;

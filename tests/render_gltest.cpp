@@ -18,9 +18,9 @@ struct Comparison {
 // Tolerance: the GPU computes in float, the oracle in double. Float sums over a thousand
 // lights and positions from a float G-buffer stay under 4e-4 relative (measured: 3e-5 for
 // one light, 3.7e-4 for 1,000 with specular); textures are stored as half floats (relative
-// error up to 2^-11 ≈ 4.9e-4 per texel), which brings textured pixels to 7.5e-4 (measured). 1e-3 covers both with a margin. Values under 1e-3 are
-// compared against 1e-3 instead, so near-black pixels don't turn rounding noise into large
-// relative errors.
+// error up to 2^-11 ≈ 4.9e-4 per texel), which brings textured pixels to 7.5e-4 (measured). 1e-3
+// covers both with a margin. Values under 1e-3 are compared against 1e-3 instead, so near-black
+// pixels don't turn rounding noise into large relative errors.
 constexpr double kRelativeTolerance = 1e-3;
 constexpr double kFloor = 1e-3;
 // Interior pixels may still disagree where a triangle edge inside one surface meets a
@@ -189,7 +189,8 @@ TEST(Render, SmallImagesWithManyLightsStayWithinTheLoopLimit) {
   scene.lights.assign(300000, scene.lights[0]);
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     scene.lights[i].type = LightType::Point;
-    scene.lights[i].position = {-4.0f + 8.0f * float(i % 97) / 96.0f, 2.0f + float(i % 13) / 13.0f, -2.0f};
+    scene.lights[i].position = {-4.0f + 8.0f * float(i % 97) / 96.0f, 2.0f + float(i % 13) / 13.0f,
+                                -2.0f};
     scene.lights[i].intensity = 1e-4f;
     scene.lights[i].range = 0.0f;
   }
@@ -204,7 +205,8 @@ TEST(Render, SmallImagesWithManyLightsStayWithinTheLoopLimit) {
   for (std::size_t i = 0; i < small.image.rgba.size(); ++i) {
     if (i % 4 == 3 || small.image.rgba[i] <= 0.0f) continue;
     ++lit;
-    EXPECT_NEAR(automatic.image.rgba[i], small.image.rgba[i], 1e-4 * small.image.rgba[i]) << "value " << i;
+    EXPECT_NEAR(automatic.image.rgba[i], small.image.rgba[i], 1e-4 * small.image.rgba[i])
+        << "value " << i;
   }
   EXPECT_GT(lit, 0);
 }
@@ -223,14 +225,20 @@ TEST(Shaders, EveryLightingVariantCompilesAndLinks) {
     for (int b = 0; b < 4; ++b) {
       if (mask & (1 << b)) defines.push_back(flags[b]);
     }
-    EXPECT_NO_THROW(gl::Program("fullscreen.vert", "lighting_reference.frag", defines, {"oRadiance"}))
+    EXPECT_NO_THROW(
+        gl::Program("fullscreen.vert", "lighting_reference.frag", defines, {"oRadiance"}))
         << "variant " << mask;
   }
   EXPECT_NO_THROW(gl::Program("gbuffer.vert", "gbuffer.frag", {}, {"gPosition"}));
-  for (const std::vector<std::string>& defines : std::vector<std::vector<std::string>>{
-           {}, {"HAS_SPECULAR"}, {"DISTANCE"}, {"DISTANCE", "HAS_SPECULAR"}, {"FITTED_COLOUR"},
-           {"FITTED_COLOUR", "HAS_SPECULAR"}}) {
-    EXPECT_NO_THROW(gl::Program("fullscreen.vert", "lighting_lightcuts.frag", defines, {"oRadiance", "oCutStats"}));
+  for (const std::vector<std::string>& defines :
+       std::vector<std::vector<std::string>>{{},
+                                             {"HAS_SPECULAR"},
+                                             {"DISTANCE"},
+                                             {"DISTANCE", "HAS_SPECULAR"},
+                                             {"FITTED_COLOUR"},
+                                             {"FITTED_COLOUR", "HAS_SPECULAR"}}) {
+    EXPECT_NO_THROW(gl::Program("fullscreen.vert", "lighting_lightcuts.frag", defines,
+                                {"oRadiance", "oCutStats"}));
   }
 }
 
@@ -238,7 +246,8 @@ TEST(Shaders, TheContextCompilesEachProgramOnce) {
   context();
   const gl::Program& a = gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {}, {"gPosition"});
   const gl::Program& b = gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {}, {"gPosition"});
-  const gl::Program& c = gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {}, {"gPosition", "gNormal"});
+  const gl::Program& c =
+      gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {}, {"gPosition", "gNormal"});
   EXPECT_EQ(&a, &b);
   EXPECT_EQ(a.id(), b.id());
   EXPECT_NE(a.id(), c.id());

@@ -1,10 +1,9 @@
 // glTF loading into scene/ types: spec defaults, transforms, lights, cameras, materials.
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 
 #include <cmath>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "scene/error.h"
 #include "scene/gltf_loader.h"
@@ -168,16 +167,19 @@ TEST(AssetFiles, LinksOutOfTheFolderFifosAndOversizedFilesAreRefused) {
   std::ofstream(assets / "big.bin") << std::string(4096, 'x');
   auto scene = [&](const std::string& uri, int bytes = 8) {
     const fs::path p = assets / "s.gltf";
-    std::ofstream(p) << R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" << uri << R"(", "byteLength": )"
-                     << bytes << "}]}";
+    std::ofstream(p) << R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" << uri
+                     << R"(", "byteLength": )" << bytes << "}]}";
     return p.string();
   };
   const std::string s = scene("link.bin");
-  EXPECT_EQ(loadError(s), s + ": URI 'link.bin': leads outside the scene's folder (through a link)");
-  EXPECT_EQ(loadError(scene("fifo.bin")), s + ": URI 'fifo.bin': not a regular file");  // would block
+  EXPECT_EQ(loadError(s),
+            s + ": URI 'link.bin': leads outside the scene's folder (through a link)");
+  EXPECT_EQ(loadError(scene("fifo.bin")),
+            s + ": URI 'fifo.bin': not a regular file");  // would block
   LoadOptions small;
   small.maxFileBytes = 1024;
-  EXPECT_EQ(loadError(scene("big.bin", 4096), small), s + ": the scene's files exceed the limit of 1024 bytes");
+  EXPECT_EQ(loadError(scene("big.bin", 4096), small),
+            s + ": the scene's files exceed the limit of 1024 bytes");
   EXPECT_EQ(loadError(scene("big.bin", 4096)), "");
   EXPECT_EQ(loadError(scene("sub/../big.bin", 4096)), "") << "a path that stays inside is fine";
 }

@@ -1,7 +1,7 @@
 // The shading model's pieces, the light packing and the sRGB encoding, without GL.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "bake/light_pack.h"
 #include "bake/light_texture_layout.h"
@@ -45,7 +45,8 @@ TEST(Shading, IrradianceFollowsInverseSquareAndCosine) {
   sun.type = LightType::Directional;
   sun.intensity = 3.0f;
   sun.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f));
-  EXPECT_NEAR(shading::irradiance(sun, glm::dvec3(5.0), glm::dvec3(0, 1, 0), dir).g, 3.0 / std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(shading::irradiance(sun, glm::dvec3(5.0), glm::dvec3(0, 1, 0), dir).g,
+              3.0 / std::sqrt(2.0), 1e-6);
 }
 
 // The packed cone (scale, offset) reproduces the smoothstep of the shading model.
@@ -87,7 +88,7 @@ TEST(LightPack, LayoutMatchesTheShadingModel) {
 TEST(Srgb, ExactEncodingNotAPowerLaw) {
   EXPECT_EQ(encodeSrgb8(0.0), 0);
   EXPECT_EQ(encodeSrgb8(1.0), 255);
-  EXPECT_EQ(encodeSrgb8(0.5), 188);  // a 2.2 power would give 186
+  EXPECT_EQ(encodeSrgb8(0.5), 188);      // a 2.2 power would give 186
   EXPECT_EQ(encodeSrgb8(0.0015654), 5);  // linear segment: 12.92 · x · 255 = 5.16
   EXPECT_EQ(encodeSrgb8(-1.0), 0);
   EXPECT_EQ(encodeSrgb8(std::nan("")), 0);

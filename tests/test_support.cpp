@@ -1,12 +1,10 @@
 #include "tests/test_support.h"
 
-#include <fstream>
-
-#include <algorithm>
-
+#include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <gtest/gtest.h>
+#include <algorithm>
+#include <fstream>
 
 namespace manylight::testing {
 
@@ -14,8 +12,10 @@ namespace fs = std::filesystem;
 
 fs::path testFolder() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "none";
-  static const fs::path root = fs::temp_directory_path() / ("manylight-test-" + std::to_string(::getpid()));
+  const std::string name =
+      info ? std::string(info->test_suite_name()) + "." + info->name() : "none";
+  static const fs::path root =
+      fs::temp_directory_path() / ("manylight-test-" + std::to_string(::getpid()));
   static const struct Cleanup {
     ~Cleanup() {
       std::error_code ec;
@@ -78,15 +78,17 @@ std::string corpusName(const std::filesystem::path& file) {
 // A camera on node 1, child of node 0 (translated by (1, 0, 0)); animation 0 moves node 1
 // from z = 5 to 10 to 15 at t = 0, 1, 2 (LINEAR), and turns it 90° about +Y at t = 1 (STEP).
 std::string animatedScene(const std::string& name, const char* interpolation, float secondTime) {
-  const float data[] = {0.0f, secondTime, 2.0f,                         // times
-                        0, 0, 5, 0, 0, 10, 0, 0, 15,                    // translations
-                        0, 0, 0, 1, 0, 0.70710678f, 0, 0.70710678f,     // rotations at t = 0, 1
-                        0, 0.70710678f, 0, 0.70710678f};                // and 2
+  const float data[] = {
+      0.0f, secondTime,  2.0f,                                                  // times
+      0,    0,           5,    0,          0, 10,          0, 0,           15,  // translations
+      0,    0,           0,    1,          0, 0.70710678f, 0, 0.70710678f,  // rotations at t = 0, 1
+      0,    0.70710678f, 0,    0.70710678f};                                // and 2
   const std::string bin = (testFolder() / (name + ".bin")).string();
   std::ofstream(bin, std::ios::binary).write(reinterpret_cast<const char*>(data), sizeof data);
   const std::string gltf = R"({
     "asset": {"version": "2.0"},
-    "buffers": [{"uri": ")" + name + R"(.bin", "byteLength": )" + std::to_string(sizeof data) + R"(}],
+    "buffers": [{"uri": ")" +
+                           name + R"(.bin", "byteLength": )" + std::to_string(sizeof data) + R"(}],
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 12},
                     {"buffer": 0, "byteOffset": 12, "byteLength": 36},
                     {"buffer": 0, "byteOffset": 48, "byteLength": 48}],
@@ -98,7 +100,8 @@ std::string animatedScene(const std::string& name, const char* interpolation, fl
     "scenes": [{"nodes": [0]}],
     "animations": [{"channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}},
                                  {"sampler": 1, "target": {"node": 1, "path": "rotation"}}],
-                    "samplers": [{"input": 0, "output": 1, "interpolation": ")" + interpolation + R"("},
+                    "samplers": [{"input": 0, "output": 1, "interpolation": ")" +
+                           interpolation + R"("},
                                  {"input": 0, "output": 2, "interpolation": "STEP"}]}]
   })";
   const std::string path = (testFolder() / (name + ".gltf")).string();

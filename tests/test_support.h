@@ -20,7 +20,8 @@ std::string roomScene(const RoomOptions& options, const std::string& name = "roo
 // (translated by (1, 0, 0)); animation 0 moves node 1 from z = 5 to 10 to 15 at t = 0,
 // `secondTime`, 2 (`interpolation`) and turns it 90° about +Y at the second key (STEP).
 // Returns the .gltf's path.
-std::string animatedScene(const std::string& name, const char* interpolation = "LINEAR", float secondTime = 1.0f);
+std::string animatedScene(const std::string& name, const char* interpolation = "LINEAR",
+                          float secondTime = 1.0f);
 
 // The process's GL context (auto backend), created on first use.
 gl::Context& context();
