@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
   fit->add_option(
       "--calibrate", f.calibrate,
       "Measure the pairs: render the scene lit by its first light in each grey 8-bit colour "
-      "1..255 on the reference path");
+      "(--codes) on the reference path");
   fit->add_option(
          "--codes", f.codes,
          "--calibrate: the 8-bit codes probed, FIRST..LAST (the default skips the sRGB curve's "

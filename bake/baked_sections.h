@@ -1,0 +1,107 @@
+#pragma once
+// The sections of a baked file (docs/baked-format.md): byte writer and checked reader, each
+// section written, all of them read. Internal to bake/: baked_file.cpp adds the header, the
+// section table and the checksum around them.
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "bake/baked_file.h"
+
+namespace manylight::baked {
+
+constexpr std::uint32_t tag(const char (&name)[5]) {
+  return std::uint32_t(std::uint8_t(name[0])) | std::uint32_t(std::uint8_t(name[1])) << 8 |
+         std::uint32_t(std::uint8_t(name[2])) << 16 | std::uint32_t(std::uint8_t(name[3])) << 24;
+}
+constexpr std::uint32_t kScene = tag("SCNE"), kMaterials = tag("MATL"), kTextures = tag("TEXR"),
+                        kMeshes = tag("MESH"), kInstances = tag("INST"), kLights = tag("LGHT"),
+                        kCameras = tag("CAMR"), kTrees = tag("TREE");
+
+class Writer {
+ public:
+  template <typename T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  template <typename T>
+  void array(const std::vector<T>& v) {  // count, then the elements
+    put(std::uint64_t(v.size()));
+    if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void string(const std::string& s) {
+    put(std::uint64_t(s.size()));
+    out_ += s;
+  }
+  std::string& bytes() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+// Reads a section; every read is checked against what is left, before any allocation.
+class Reader {
+ public:
+  Reader(std::string_view bytes, std::string where) : bytes_(bytes), where_(std::move(where)) {}
+
+  template <typename T>
+  T get() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, bytes_.data() + at_, sizeof v);
+    at_ += sizeof v;
+    return v;
+  }
+  template <typename T>
+  std::vector<T> array() {
+    const std::uint64_t n = get<std::uint64_t>();
+    if (n > (bytes_.size() - at_) / sizeof(T))
+      fail("an array of " + std::to_string(n) + " runs past the section");
+    std::vector<T> v(n);
+    if (n > 0)
+      std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));  // memcpy from/to null is UB
+    at_ += n * sizeof(T);
+    return v;
+  }
+  std::string string() {
+    const std::vector<char> c = array<char>();
+    return std::string(c.begin(), c.end());
+  }
+  std::uint32_t count(std::uint32_t most, const char* what) {
+    const auto n = get<std::uint32_t>();
+    if (n > most)
+      fail(std::string(what) + ": " + std::to_string(n) + " is more than " + std::to_string(most));
+    return n;
+  }
+  void end() {
+    if (at_ != bytes_.size()) fail(std::to_string(bytes_.size() - at_) + " bytes left over");
+  }
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw BakeError(where_ + ": " + problem);
+  }
+
+ private:
+  void need(std::size_t n) {
+    if (n > bytes_.size() - at_) fail("ends early");
+  }
+  std::string_view bytes_;
+  std::size_t at_ = 0;
+  std::string where_;
+};
+
+// The sections `baked` needs, in file order: (tag, bytes).
+std::vector<std::pair<std::uint32_t, std::string>> writeSections(const BakedScene& baked);
+
+// Reads the sections (tag → bytes) of the file at `path`. Throws BakeError
+// "PATH: SECTION: problem".
+BakedScene readSections(const std::map<std::uint32_t, std::string_view>& sections,
+                        const std::string& path);
+
+}  // namespace manylight::baked
