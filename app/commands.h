@@ -33,6 +33,8 @@ enum ExitCode : int {
 double msSince(Clock::time_point t);
 // "R,G,B" → a colour; throws CLI::ValidationError.
 glm::vec3 parseRgb(const std::string& s);
+// "WxH" within 1..16384 → width and height; otherwise says why on stderr and returns false.
+bool parseSize(const std::string& text, int* width, int* height);
 // The node colour coding's figures for --stats.
 nlohmann::json nodeColourStats(const NodeColourCoder& c);
 // A context, or null after saying why there is none.
@@ -112,5 +114,22 @@ struct CompareArgs {
 };
 
 int runCompare(const CompareArgs& a);
+
+struct BenchArgs {
+  std::string suite = "sweep", csv, json, scene, size, backend = "auto", cases;
+  std::string layouts = "uniform,clustered,street,mixed";
+  std::string counts = "64,1024,16384,65536,262144,1048576";
+  std::string methods = "reference,lightcuts,lightcuts-distance", modes = "node,total";
+  std::string errors;  // empty: the suite's (sweep 0.005,0.01,0.02,0.05,0.1; stability 0.02)
+  int repeats = 3, frames = 60, maxCut = LightcutsSettings{}.maxCut;
+  double referenceSeconds = 60.0;
+  std::size_t lightBudget = 1u << 20;
+  bool resume = false;
+  bool verbose = false;
+};
+
+// Declares `bench` and its options on `app`.
+CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a);
+int runBench(const BenchArgs& a);
 
 }  // namespace manylight::cli

@@ -27,6 +27,15 @@ glm::vec3 parseRgb(const std::string& s) {
   return v;
 }
 
+bool parseSize(const std::string& text, int* width, int* height) {
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%dx%d%c", width, height, &tail) == 2 && *width >= 1 &&
+      *height >= 1 && *width <= 16384 && *height <= 16384)
+    return true;
+  std::cerr << "manylight: --size: expected WxH within 1..16384, got '" << text << "'\n";
+  return false;
+}
+
 nlohmann::json nodeColourStats(const NodeColourCoder& c) {
   nlohmann::json j = {
       {"coding", c.coding() == NodeColourCoding::Fitted ? "fitted" : "rgb9e5"},

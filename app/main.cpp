@@ -159,6 +159,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   compare->add_option("--diff", c.diff,
                       "Where to write the difference image when they differ (default: B.diff.png)");
+  BenchArgs benchArgs;
+  CLI::App* bench = addBenchCommand(app, benchArgs);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -170,6 +172,7 @@ int main(int argc, char** argv) {
     if (*bake) return runBake(b, processStart);
     if (*playCmd) return runPlay(p, processStart);
     if (*compare) return runCompare(c);
+    if (*bench) return runBench(benchArgs);
   } catch (const CLI::ParseError& e) {
     std::cerr << "manylight: " << e.what() << "\n";
     return kExitUsage;
@@ -179,6 +182,7 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     const std::string& subject = *fit               ? (f.pairs.empty() ? f.calibrate : f.pairs)
                                  : *compare         ? c.a
+                                 : *bench           ? std::string("bench")
                                  : *bake            ? b.scene
                                  : *playCmd         ? p.scene
                                  : r.scenes.empty() ? std::string("render")

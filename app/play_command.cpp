@@ -55,12 +55,7 @@ extern "C" void onInterrupt(int) { gInterrupted = true; }
 int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   PlaybackRequest request;
   RenderRequest& r = request.frame;
-  char tail = 0;
-  if (std::sscanf(a.size.c_str(), "%dx%d%c", &r.width, &r.height, &tail) != 2 || r.width < 1 ||
-      r.height < 1 || r.width > 16384 || r.height > 16384) {
-    std::cerr << "manylight: --size: expected WxH within 1..16384, got '" << a.size << "'\n";
-    return kExitUsage;
-  }
+  if (!parseSize(a.size, &r.width, &r.height)) return kExitUsage;
   const bool toStdout = a.output == "-";
   if (!toStdout) {
     std::string first;

@@ -88,12 +88,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
 
 int runRender(const RenderArgs& a, Clock::time_point processStart) {
   RenderRequest request;
-  char tail = 0;
-  if (std::sscanf(a.size.c_str(), "%dx%d%c", &request.width, &request.height, &tail) != 2 ||
-      request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384) {
-    std::cerr << "manylight: --size: expected WxH within 1..16384, got '" << a.size << "'\n";
-    return kExitUsage;
-  }
+  if (!parseSize(a.size, &request.width, &request.height)) return kExitUsage;
   const bool batch = !a.outDir.empty();
   if (batch == !a.output.empty()) {
     std::cerr

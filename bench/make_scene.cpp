@@ -1,29 +1,38 @@
 // Writes the generated room scene (scene/scene_builder.h) with a chosen light count: the
-// bundled sample (scenes/sample.gltf) and the benchmarks' inputs come from here.
+// bundled sample (scenes/sample.gltf) and the benchmarks' inputs come from here. With
+// --layout NAME the lights are those of the sweep's layout (scene/light_layouts.h), so peers
+// (bench/peers.sh) render exactly what `manylight bench` renders.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
 #include "scene/error.h"
+#include "scene/light_layouts.h"
 #include "scene/scene_builder.h"
 
 int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: manylight_make_scene OUT.gltf|OUT.glb LIGHTS [SEED] [--point-only] "
-                 "[--specular] [--untextured]\n");
+                 "[--specular] [--untextured] [--layout NAME]\n");
     return 2;
   }
   manylight::RoomOptions o;
   o.lightCount = std::atoi(argv[2]);
   if (argc > 3 && argv[3][0] != '-') o.seed = std::uint32_t(std::strtoul(argv[3], nullptr, 10));
-  for (int i = 3; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--point-only") o.mix = false;
-    if (a == "--specular") o.specular = true;
-    if (a == "--untextured") o.textured = false;
-  }
   try {
+    for (int i = 3; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "--point-only") o.mix = false;
+      if (a == "--specular") o.specular = true;
+      if (a == "--untextured") o.textured = false;
+      if (a == "--layout" && i + 1 < argc) {
+        // The sweep's seed (render/sweep.h) unless one is given.
+        const std::uint32_t seed = argc > 3 && argv[3][0] != '-' ? o.seed : 7;
+        o.lights =
+            manylight::layoutLights(manylight::parseLightLayout(argv[++i]), o.lightCount, seed);
+      }
+    }
     manylight::writeRoomScene(argv[1], o);
   } catch (const manylight::Error& e) {
     std::fprintf(stderr, "manylight_make_scene: %s\n", e.what());

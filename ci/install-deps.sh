@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package manylight needs to build, test and benchmark.
 # Idempotent; run as root (or as a user with sudo).
+#   ci/install-deps.sh           what the build, the tests and bench/sweep.sh need
+#   ci/install-deps.sh --peers   also the peers bench/peers.sh times: f3d, and Xvfb for it
 set -euo pipefail
 
 packages=(
@@ -12,8 +14,13 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   clang libclang-rt-14-dev clang-format
-  python3
+  python3 gnuplot-nox
 )
+case "${1:-}" in
+  --peers) packages+=(f3d xvfb xauth) ;;
+  "") ;;
+  *) echo "usage: ci/install-deps.sh [--peers]" >&2; exit 2 ;;
+esac
 
 sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then

@@ -22,6 +22,7 @@
   X(PFNGLCULLFACEPROC, glCullFace)                               \
   X(PFNGLFRONTFACEPROC, glFrontFace)                             \
   X(PFNGLFINISHPROC, glFinish)                                   \
+  X(PFNGLSCISSORPROC, glScissor)                                 \
   X(PFNGLREADPIXELSPROC, glReadPixels)                           \
   X(PFNGLREADBUFFERPROC, glReadBuffer)                           \
   X(PFNGLDRAWBUFFERSPROC, glDrawBuffers)                         \

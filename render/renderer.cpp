@@ -110,6 +110,33 @@ void Renderer::replaceLights(const std::vector<Light>& lights) {
   gpu_.replaceLights(lights);
 }
 
+std::vector<bool> rowsLit(int height, int rowBandStride) {
+  std::vector<bool> rows(std::size_t(std::max(height, 0)));
+  // Bands count from the bottom row, as GL's scissor does; images run top-down.
+  for (int y = 0; y < height; ++y)
+    rows[std::size_t(height - 1 - y)] = (y / kRowBand) % std::max(rowBandStride, 1) == 0;
+  return rows;
+}
+
+int Renderer::lightReference(const View& view, const FrameSettings& settings) {
+  if (settings.rowBandStride <= 1)
+    return reference_.light(gpu_, gbuffer_, view, settings.lightsPerPass);
+  const int bandRows = kRowBand * settings.rowBandStride;
+  // As many lights per pass as the lit pixels allow.
+  const int litPixels =
+      gbuffer_.width() * ((gbuffer_.height() + bandRows - 1) / bandRows) * kRowBand;
+  const int perPass = settings.lightsPerPass > 0 ? settings.lightsPerPass
+                                                 : ReferenceMethod::lightsPerPass(litPixels);
+  glEnable(GL_SCISSOR_TEST);
+  int passes = 0;
+  for (int y = 0; y < gbuffer_.height(); y += bandRows) {
+    glScissor(0, y, gbuffer_.width(), kRowBand);
+    passes += reference_.light(gpu_, gbuffer_, view, perPass);
+  }
+  glDisable(GL_SCISSOR_TEST);
+  return passes;
+}
+
 Image Renderer::render(const View& view, const FrameSettings& settings, FrameStats* stats) {
   glFinish();
   const auto start = std::chrono::steady_clock::now();
@@ -119,7 +146,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   if (lightcuts_) {
     lightcuts_->light(gpu_, gbuffer_, view, settings.lightcuts);
   } else {
-    passes = reference_.light(gpu_, gbuffer_, view, settings.lightsPerPass);
+    passes = lightReference(view, settings);
   }
   glBindVertexArray(0);
   glFinish();

@@ -26,7 +26,15 @@ struct FrameSettings {
   int lightsPerPass = 0;        // 0: ReferenceMethod::lightsPerPass(pixels)
   LightcutsSettings lightcuts;  // the lightcuts methods
   bool readCutStats = true;     // lightcuts: read the per-pixel cut statistics back into FrameStats
+  // Reference method: light only the bands of kRowBand rows whose index is a multiple of
+  // this (1: every row). For a reference too slow to light whole (bench/); the other rows
+  // keep only ambient and emissive light. See rowsLit.
+  int rowBandStride = 1;
 };
+
+inline constexpr int kRowBand = 8;
+// Per row of a `height`-row image (top-down): whether a frame with `rowBandStride` lights it.
+std::vector<bool> rowsLit(int height, int rowBandStride);
 
 struct FrameStats {
   double renderMs = 0.0;  // G-buffer + lighting passes, bracketed by glFinish
@@ -55,6 +63,7 @@ class Renderer {
 
  private:
   void geometryPass(const View& view, const FrameSettings& settings);
+  int lightReference(const View& view, const FrameSettings& settings);
 
   // Uniform locations of the G-buffer program, looked up once.
   struct GeometryUniforms {

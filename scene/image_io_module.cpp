@@ -86,6 +86,27 @@ bool readFloat(const char* path, RawImage<float>* out, std::string* error) {
   return readPixels(*in, OIIO::TypeDesc::FLOAT, out, error);
 }
 
+// Compares `a` and `b`, whose shapes are already in `out`, with ImageBufAlgo::compare.
+bool compareBuffers(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, double threshold,
+                    ImageComparison* out, std::string* error) {
+  out->sameShape = out->width[0] == out->width[1] && out->height[0] == out->height[1] &&
+                   out->channels[0] == out->channels[1];
+  if (!out->sameShape) return true;
+  const auto r = OIIO::ImageBufAlgo::compare(a, b, float(threshold), float(threshold));
+  // r.error only says that some value failed; errors of the comparison itself land here.
+  if (a.has_error() || b.has_error()) return fail(error, a.geterror() + b.geterror());
+  out->maxError = r.maxerror;
+  out->meanError = r.meanerror;
+  out->rmsError = r.rms_error;
+  out->psnr = r.PSNR;
+  out->maxX = r.maxx;
+  out->maxY = r.maxy;
+  out->maxChannel = r.maxc;
+  out->failing = static_cast<long long>(r.nfail);
+  out->values = static_cast<long long>(out->width[0]) * out->height[0] * out->channels[0];
+  return true;
+}
+
 bool compareFiles(const char* a, const char* b, double threshold, const char* diffPath,
                   double diffScale, ImageComparison* out, std::string* error) {
   OIIO::ImageBuf images[2] = {OIIO::ImageBuf(a), OIIO::ImageBuf(b)};
@@ -98,23 +119,8 @@ bool compareFiles(const char* a, const char* b, double threshold, const char* di
     out->height[i] = spec.height;
     out->channels[i] = spec.nchannels;
   }
-  out->sameShape = out->width[0] == out->width[1] && out->height[0] == out->height[1] &&
-                   out->channels[0] == out->channels[1];
+  if (!compareBuffers(images[0], images[1], threshold, out, error)) return false;
   if (!out->sameShape) return true;
-  const auto r =
-      OIIO::ImageBufAlgo::compare(images[0], images[1], float(threshold), float(threshold));
-  // r.error only says that some value failed; errors of the comparison itself land here.
-  if (images[0].has_error() || images[1].has_error())
-    return fail(error, images[0].geterror() + images[1].geterror());
-  out->maxError = r.maxerror;
-  out->meanError = r.meanerror;
-  out->rmsError = r.rms_error;
-  out->psnr = r.PSNR;
-  out->maxX = r.maxx;
-  out->maxY = r.maxy;
-  out->maxChannel = r.maxc;
-  out->failing = static_cast<long long>(r.nfail);
-  out->values = static_cast<long long>(out->width[0]) * out->height[0] * out->channels[0];
   if (!diffPath) return true;
   OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(images[0], images[1]);
   diff = OIIO::ImageBufAlgo::mul(diff, float(diffScale));
@@ -127,8 +133,27 @@ bool compareFiles(const char* a, const char* b, double threshold, const char* di
              : fail(error, diff.geterror() + OIIO::geterror());
 }
 
-const ImageIoApi kApi = {ImageIoApi::kVersion, decode8,   encodePng8,  writeSrgb8,
-                         writeLinearFloat,     readFloat, compareFiles};
+bool compareImages(const RawImage<float>& a, const RawImage<float>& b, double threshold,
+                   ImageComparison* out, std::string* error) {
+  const RawImage<float>* images[2] = {&a, &b};
+  OIIO::ImageBuf buffers[2];
+  for (int i = 0; i < 2; ++i) {
+    const RawImage<float>& image = *images[i];
+    out->width[i] = image.width;
+    out->height[i] = image.height;
+    out->channels[i] = image.channels;
+    if (std::size_t(image.width) * image.height * image.channels != image.pixels.size())
+      return fail(error, "image size does not match its pixels");
+    // Wraps the caller's pixels; compare only reads them.
+    buffers[i].reset(
+        OIIO::ImageSpec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT),
+        const_cast<float*>(image.pixels.data()));
+  }
+  return compareBuffers(buffers[0], buffers[1], threshold, out, error);
+}
+
+const ImageIoApi kApi = {ImageIoApi::kVersion, decode8,   encodePng8,   writeSrgb8,
+                         writeLinearFloat,     readFloat, compareFiles, compareImages};
 
 }  // namespace
 }  // namespace manylight

@@ -37,7 +37,7 @@ struct ImageComparison {
 
 struct ImageIoApi {
   // Bumped whenever this struct changes; the loader refuses a module built for another.
-  static constexpr int kVersion = 3;
+  static constexpr int kVersion = 4;
   int version;
   // Decodes an encoded image held in memory; `extension` (".png", ".jpg") picks the reader.
   // Refuses, from the header and before decoding, an image wider or taller than
@@ -59,6 +59,9 @@ struct ImageIoApi {
   // as an 8-bit PNG (colour channels only) there.
   bool (*compareFiles)(const char* a, const char* b, double threshold, const char* diffPath,
                        double diffScale, ImageComparison* out, std::string* error);
+  // Compares two images in memory, as compareFiles does.
+  bool (*compareImages)(const RawImage<float>& a, const RawImage<float>& b, double threshold,
+                        ImageComparison* out, std::string* error);
 };
 
 }  // namespace manylight

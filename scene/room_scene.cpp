@@ -47,10 +47,11 @@ void writeRoomScene(const std::string& path, const RoomOptions& o) {
   b.addPerspectiveCamera({0.0f, 3.0f, 9.0f}, {0.0f, 1.0f, 0.0f}, 0.8f);
   b.addOrthographicCamera({6.0f, 6.0f, 6.0f}, {0.0f, 0.5f, 0.0f}, 6.0f, 6.0f);
 
+  for (const Light& l : o.lights) b.addLight(l);
   std::mt19937 rng(o.seed);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const float n = float(std::max(o.lightCount, 1));
-  for (int i = 0; i < o.lightCount; ++i) {
+  for (int i = 0; o.lights.empty() && i < o.lightCount; ++i) {
     Light l;
     l.type = !o.mix ? LightType::Point : LightType(i % 3);
     l.position = {-4.5f + 9.0f * u(rng), 0.3f + 4.0f * u(rng), -4.5f + 9.0f * u(rng)};

@@ -4,11 +4,10 @@
 
 #include <cmath>
 #include <iostream>
-#include <random>
 
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
-#include "scene/srgb.h"
+#include "scene/light_layouts.h"
 #include "tests/test_support.h"
 
 namespace manylight::testing {
@@ -21,67 +20,6 @@ constexpr double kFloatSlack = 1e-4;
 constexpr double kAbsoluteFloor = 1e-6;
 // Large enough that the total rule converges on nearly every pixel of these scenes.
 constexpr int kMaxCut = 8000;
-
-enum class Layout { Uniform, Clustered, Coincident, WideIntensities, Far, Mixed, EightBitColours };
-
-// `count` lights over the room of writeRoomScene (x, z in [−4.5, 4.5], y in [0.3, 4.3]).
-std::vector<Light> makeLights(Layout layout, int count, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  auto inRoom = [&] {
-    return glm::vec3(-4.5f + 9.0f * u(rng), 0.3f + 4.0f * u(rng), -4.5f + 9.0f * u(rng));
-  };
-  std::vector<glm::vec3> centres;
-  for (int k = 0; k < 12; ++k) centres.push_back(inRoom());
-  std::vector<Light> lights(count);
-  for (int i = 0; i < count; ++i) {
-    Light& l = lights[i];
-    l.colour = glm::vec3(0.3f) + 0.7f * glm::vec3(u(rng), u(rng), u(rng));
-    l.intensity = 60.0f / float(count);
-    l.position = inRoom();
-    switch (layout) {
-      case Layout::Clustered: {
-        const glm::vec3 c = centres[i % centres.size()];
-        l.position = c + 0.05f * glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f);
-        break;
-      }
-      case Layout::Coincident:
-        l.position = {0.5f, 2.5f, 1.0f};
-        break;
-      case Layout::WideIntensities:
-        l.intensity = std::pow(10.0f, -6.0f + 12.0f * u(rng)) / float(count);
-        break;
-      case Layout::Far: {
-        const glm::vec3 d = glm::normalize(glm::vec3(u(rng) - 0.5f, 0.2f + u(rng), u(rng) - 0.5f));
-        l.position = 1e5f * d + glm::vec3(u(rng), u(rng), u(rng));
-        l.intensity = 60.0f * 1e10f / float(count);
-        break;
-      }
-      case Layout::EightBitColours: {
-        // As a light list gives them: 8-bit sRGB codes, often saturated, decoded exactly.
-        std::uniform_int_distribution<int> code(0, 255);
-        for (int c = 0; c < 3; ++c)
-          l.colour[c] = float(decodeSrgb8(std::uint8_t(i % 4 == c ? 0 : code(rng))));
-        break;
-      }
-      case Layout::Mixed:
-        l.type = LightType(i % 3);
-        l.direction = glm::normalize(glm::vec3(-3.0f + 6.0f * u(rng), 0.0f, -3.0f + 6.0f * u(rng)) -
-                                     l.position);
-        if (l.type == LightType::Spot) {
-          l.outerConeAngle = 0.35f + 0.5f * u(rng);
-          l.innerConeAngle = 0.6f * l.outerConeAngle;
-          l.intensity *= 2.0f;
-        }
-        if (l.type == LightType::Directional) l.intensity = 1.0f / float(count);
-        if (l.type != LightType::Directional && i % 2 == 0) l.range = 3.0f + 5.0f * u(rng);
-        break;
-      default:
-        break;
-    }
-  }
-  return lights;
-}
 
 struct Errors {
   int compared = 0, atMaxCut = 0, failing = 0;
@@ -161,26 +99,26 @@ Scene* LightcutsTest::specularRoom_ = nullptr;
 
 struct Case {
   const char* name;
-  Layout layout;
+  LightLayout layout;
   int count;
   bool specular = false;  // Phong materials (a metal box, a glossy sphere)
 };
 
 const Case kCases[] = {
-    {"uniform-4096", Layout::Uniform, 4096},
-    {"clustered-4096", Layout::Clustered, 4096},
-    {"coincident-1000", Layout::Coincident, 1000},
-    {"wide-intensities-2000", Layout::WideIntensities, 2000},
-    {"far-1000", Layout::Far, 1000},
-    {"mixed-3000", Layout::Mixed, 3000},
-    {"count-1", Layout::Mixed, 1},
-    {"count-2", Layout::Mixed, 2},
-    {"count-3", Layout::Mixed, 3},
-    {"count-1023", Layout::Uniform, 1023},
-    {"count-1025", Layout::Uniform, 1025},
-    {"count-prime-1009", Layout::Mixed, 1009},
-    {"mixed-specular-2000", Layout::Mixed, 2000, true},
-    {"eight-bit-colours-4096", Layout::EightBitColours, 4096},
+    {"uniform-4096", LightLayout::Uniform, 4096},
+    {"clustered-4096", LightLayout::Clustered, 4096},
+    {"coincident-1000", LightLayout::Coincident, 1000},
+    {"wide-intensities-2000", LightLayout::WideIntensities, 2000},
+    {"far-1000", LightLayout::Far, 1000},
+    {"mixed-3000", LightLayout::Mixed, 3000},
+    {"count-1", LightLayout::Mixed, 1},
+    {"count-2", LightLayout::Mixed, 2},
+    {"count-3", LightLayout::Mixed, 3},
+    {"count-1023", LightLayout::Uniform, 1023},
+    {"count-1025", LightLayout::Uniform, 1025},
+    {"count-prime-1009", LightLayout::Mixed, 1009},
+    {"mixed-specular-2000", LightLayout::Mixed, 2000, true},
+    {"eight-bit-colours-4096", LightLayout::EightBitColours, 4096},
 };
 
 // Every case of kCases through `method` and `mode` (ε = 0.02), printed under `prefix`.
@@ -190,7 +128,7 @@ std::vector<Errors> runCases(const Scene& room, const Scene& specularRoom, Metho
   std::vector<Errors> all;
   for (const Case& c : kCases) {
     all.push_back(compareWithReference(c.specular ? specularRoom : room,
-                                       makeLights(c.layout, c.count, 7), mode, 0.02,
+                                       layoutLights(c.layout, c.count, 7), mode, 0.02,
                                        prefix + c.name, method, coding));
   }
   return all;

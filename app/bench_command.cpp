@@ -1,0 +1,375 @@
+// `manylight bench`: the speed/accuracy sweep and the stability suite (render/sweep.h),
+// written as CSV and JSON after every case, so an interrupted run keeps what it measured.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "app/commands.h"
+#include "render/progress.h"
+#include "render/sweep.h"
+#include "scene/output_file.h"
+#include "scene/scene_builder.h"
+#include "scene/text_table.h"
+
+namespace manylight::cli {
+namespace {
+
+std::vector<std::string> splitList(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream in(list);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+template <typename T>
+std::vector<T> parseNumbers(const std::string& option, const std::string& list, T low, T high) {
+  std::vector<T> out;
+  for (const std::string& item : splitList(list)) {
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !(v >= double(low) && v <= double(high)))
+      throw CLI::ValidationError(option, "'" + item + "' is not a number in " +
+                                             std::to_string(low) + ".." + std::to_string(high));
+    out.push_back(T(v));
+  }
+  if (out.empty()) throw CLI::ValidationError(option, "the list is empty");
+  return out;
+}
+
+std::string number(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (std::isnan(v)) return "nan";
+  char s[32];
+  std::snprintf(s, sizeof s, "%.6g", v);
+  return s;
+}
+
+// JSON has no infinity: a PSNR of identical images is written as null.
+nlohmann::json jsonNumber(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+const char* kColumns =
+    "case,layout,lights,method,mode,error,max_cut,width,height,repeats,render_ms,render_ms_min,"
+    "render_ms_max,ratio_to_reference,ratio_to_floor,floor_ms,light_evals_per_px,"
+    "node_evals_per_px,avg_cut,largest_cut,pixels_at_max_cut,bake_ms,peak_rss_mb,"
+    "pixels_compared,non_finite_pixels,max_rel_error,p99_rel_error,max_abs_error,rmse_8bit,"
+    "psnr_8bit,share_off_gt_1_code,reference_row_share,failure";
+
+bool isLightcuts(const SweepVariant& v) { return v.method == Method::Lightcuts; }
+
+std::string csvRow(const RunRecord& r, double floorMs) {
+  const ImageErrors& e = r.errors;
+  std::string failure = r.failure;
+  std::replace(failure.begin(), failure.end(), '"', '\'');
+  std::ostringstream s;
+  s << r.caseName << ',' << lightLayoutName(r.layout) << ',' << r.lights << ','
+    << methodName(r.variant.method) << ','
+    << (isLightcuts(r.variant) ? (r.variant.mode == ErrorMode::Total ? "total" : "node") : "")
+    << ',' << (isLightcuts(r.variant) ? number(r.variant.error) : "") << ','
+    << (r.variant.method == Method::Reference ? "" : std::to_string(r.maxCut)) << ',' << r.width
+    << ',' << r.height << ',' << r.repeats << ',' << number(r.renderMs) << ','
+    << number(r.renderMsMin) << ',' << number(r.renderMsMax) << ',' << number(r.ratioToReference)
+    << ',' << number(r.ratioToFloor) << ',' << number(floorMs) << ','
+    << number(r.lightEvaluationsPerPixel) << ',' << number(r.nodeEvaluationsPerPixel) << ','
+    << number(r.averageCut) << ',' << r.largestCut << ',' << r.pixelsAtMaxCut << ','
+    << number(r.bakeMs) << ',' << number(r.peakRssMb) << ',' << e.pixels << ',' << e.nonFinite
+    << ',' << number(e.maxRelative) << ',' << number(e.p99Relative) << ',' << number(e.maxAbsolute)
+    << ',' << number(e.rmse8) << ',' << number(e.psnr8) << ',' << number(e.offByMoreThanOneCode)
+    << ',' << number(1.0 / r.rowBandStride) << ",\"" << failure << '"';
+  return s.str();
+}
+
+nlohmann::json runJson(const RunRecord& r) {
+  const ImageErrors& e = r.errors;
+  nlohmann::json j = {
+      {"case", r.caseName},
+      {"layout", lightLayoutName(r.layout)},
+      {"lights", r.lights},
+      {"method", methodName(r.variant.method)},
+      {"label", r.variant.label()},
+      {"width", r.width},
+      {"height", r.height},
+      {"repeats", r.repeats},
+      {"render_ms", r.renderMs},
+      {"render_ms_min", r.renderMsMin},
+      {"render_ms_max", r.renderMsMax},
+      {"ratio_to_reference", r.ratioToReference},
+      {"ratio_to_floor", r.ratioToFloor},
+      {"light_evals_per_px", r.lightEvaluationsPerPixel},
+      {"node_evals_per_px", r.nodeEvaluationsPerPixel},
+      {"bake_ms", r.bakeMs},
+      {"peak_rss_mb", r.peakRssMb},
+      {"pixels_compared", e.pixels},
+      {"non_finite_pixels", e.nonFinite},
+      {"max_rel_error", jsonNumber(e.maxRelative)},
+      {"p99_rel_error", jsonNumber(e.p99Relative)},
+      {"max_abs_error", jsonNumber(e.maxAbsolute)},
+      {"rmse_8bit", e.rmse8},
+      {"psnr_8bit", jsonNumber(e.psnr8)},
+      {"share_off_gt_1_code", e.offByMoreThanOneCode},
+      {"reference_row_share", 1.0 / r.rowBandStride},
+      {"failure", r.failure},
+  };
+  if (isLightcuts(r.variant)) {
+    j["mode"] = r.variant.mode == ErrorMode::Total ? "total" : "node";
+    j["error"] = r.variant.error;
+  }
+  if (r.variant.method != Method::Reference) {
+    j["max_cut"] = r.maxCut;
+    j["avg_cut"] = r.averageCut;
+    j["largest_cut"] = r.largestCut;
+    j["pixels_at_max_cut"] = r.pixelsAtMaxCut;
+  }
+  return j;
+}
+
+// The scene the sweep lights: the user's, or the generated room (scene/scene_builder.h).
+Scene sweepScene(const std::string& path) {
+  if (!path.empty()) return loadGltf(path);
+  RoomOptions o;
+  o.lightCount = 1;
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("manylight-bench-room-" + std::to_string(::getpid()) + ".glb");
+  writeRoomScene(file.string(), o);
+  Scene scene = loadGltf(file.string());
+  std::error_code ec;
+  std::filesystem::remove(file, ec);
+  return scene;
+}
+
+constexpr std::uintmax_t kMaxResultBytes = 1u << 28;
+
+// --resume: the cases already measured in a.json with the same settings as `json`, whose
+// runs (and rows of a.csv) are kept in `json` and `csv`. Throws Error when the files
+// disagree with the settings.
+std::set<std::string> resumeFrom(const BenchArgs& a, nlohmann::json* json, std::string* csv) {
+  std::set<std::string> done;
+  if (a.json.empty()) throw Error("bench: --resume needs --json, which records the settings");
+  if (!std::filesystem::exists(a.json)) return done;
+  nlohmann::json before;
+  try {
+    before = nlohmann::json::parse(readTextFile(a.json, kMaxResultBytes));
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(a.json + ": cannot resume: " + e.what());
+  }
+  for (const char* key : {"suite", "width", "height", "repeats", "reference_seconds", "max_cut"}) {
+    if (!before.contains(key) || before[key] != (*json)[key])
+      throw Error(a.json + ": cannot resume: it was measured with another " + key +
+                  "; remove it or run without --resume");
+  }
+  for (const auto& run : before["runs"]) {
+    done.insert(run.value("case", ""));
+    (*json)["runs"].push_back(run);
+  }
+  if (!a.csv.empty() && std::filesystem::exists(a.csv)) {
+    const std::string text = readTextFile(a.csv, kMaxResultBytes);
+    for (const TextLine& line : contentLines(text)) {
+      const std::string row(line.text);
+      if (row.rfind("case,", 0) != 0 && done.count(row.substr(0, row.find(','))))
+        *csv += row + "\n";
+    }
+  }
+  return done;
+}
+
+}  // namespace
+
+CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
+  CLI::App* bench = app.add_subcommand(
+      "bench",
+      "Time every method against the reference over light layouts and counts (the sweep), or "
+      "run the stability suite; writes CSV and JSON");
+  bench->add_option("--suite", a.suite, "sweep (layouts x counts) or stability (adversarial cases)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"sweep", "stability"}));
+  bench->add_option("--csv", a.csv, "Write one row per method and case here");
+  bench->add_option("--json", a.json, "Write the settings and every result here");
+  bench->add_option("--scene", a.scene,
+                    "glTF scene with a camera whose lights are replaced (default: the generated "
+                    "room of the sample)");
+  std::string layouts;
+  for (const auto& [l, name] : lightLayoutNames()) layouts += (layouts.empty() ? "" : ", ") + name;
+  bench->add_option("--layouts", a.layouts, "sweep: light layouts, from " + layouts)
+      ->capture_default_str();
+  bench->add_option("--cases", a.cases,
+                    "stability: run only these cases (names as in docs/stability.md)");
+  bench->add_option("--counts", a.counts, "sweep: light counts")->capture_default_str();
+  bench->add_option("--methods", a.methods, "reference, lightcuts, lightcuts-distance")
+      ->capture_default_str();
+  bench->add_option("--modes", a.modes, "lightcuts error modes: node, total")
+      ->capture_default_str();
+  bench->add_option("--errors", a.errors,
+                    "lightcuts ε values (default: 0.005,0.01,0.02,0.05,0.1 sweep; 0.02 stability)");
+  bench->add_option("--size", a.size, "Image size WxH (default: 640x480 sweep, 320x240 stability)");
+  bench->add_option("--repeats", a.repeats, "Timed renders after a warm-up; the median is kept")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  bench
+      ->add_option("--reference-seconds", a.referenceSeconds,
+                   "A reference frame estimated longer lights only every k-th band of 8 rows, "
+                   "and the errors cover those rows")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 1e6));
+  bench->add_option("--max-cut", a.maxCut, "lightcuts: most nodes in a pixel's cut")
+      ->capture_default_str()
+      ->check(CLI::Range(1, kMaxCutLimit));
+  bench->add_flag("--resume", a.resume,
+                  "Keep the cases already in --json (and --csv) from an interrupted run with the "
+                  "same settings, and run only the others");
+  bench->add_option("--frames", a.frames, "stability: frames of the turntable (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  bench->add_option("--light-budget", a.lightBudget, "Most lights in any case")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1 << 26));
+  bench->add_option("--backend", a.backend, "Context: auto, egl, osmesa")->capture_default_str();
+  bench->add_flag("-v,--verbose", a.verbose, "Say which context was chosen, and each result");
+  return bench;
+}
+
+int runBench(const BenchArgs& a) {
+  if (a.csv.empty() && a.json.empty()) {
+    std::cerr << "manylight: bench: give --csv FILE, --json FILE or both\n";
+    return kExitUsage;
+  }
+  const bool stability = a.suite == "stability";
+  SweepSettings settings;
+  if (stability) settings.width = 320, settings.height = 240;
+  if (!a.size.empty() && !parseSize(a.size, &settings.width, &settings.height)) return kExitUsage;
+  settings.repeats = a.repeats;
+  settings.referenceSeconds = a.referenceSeconds;
+  settings.maxCut = a.maxCut;
+  std::vector<Method> methods;
+  for (const std::string& m : splitList(a.methods)) methods.push_back(parseMethod(m));
+  std::vector<ErrorMode> modes;
+  for (const std::string& m : splitList(a.modes)) {
+    if (m != "node" && m != "total")
+      throw CLI::ValidationError("--modes", "'" + m + "' is neither node nor total");
+    modes.push_back(m == "total" ? ErrorMode::Total : ErrorMode::Node);
+  }
+  const std::vector<float> errors = parseNumbers<float>(
+      "--errors", a.errors.empty() ? (stability ? "0.02" : "0.005,0.01,0.02,0.05,0.1") : a.errors,
+      1e-6f, 1.0f);
+  settings.variants = expandVariants(methods, modes, errors);
+  if (settings.variants.empty()) throw CLI::ValidationError("--methods", "no method to run");
+
+  std::vector<SweepCase> cases;
+  if (stability) {
+    cases = stabilityCases();
+    if (!a.cases.empty()) {
+      std::vector<SweepCase> chosen;
+      for (const std::string& name : splitList(a.cases)) {
+        auto it = std::find_if(cases.begin(), cases.end(),
+                               [&](const SweepCase& c) { return c.name == name; });
+        if (it == cases.end()) {
+          std::string names;
+          for (const SweepCase& c : cases) names += (names.empty() ? "" : ", ") + c.name;
+          throw CLI::ValidationError(
+              "--cases", "no stability case '" + name + "' (choose from " + names + ")");
+        }
+        chosen.push_back(*it);
+      }
+      cases = chosen;
+    }
+  } else {
+    const std::vector<int> counts = parseNumbers<int>("--counts", a.counts, 1, 1 << 26);
+    for (const std::string& l : splitList(a.layouts))
+      for (int n : counts) cases.push_back(layoutCase(parseLightLayout(l), n));
+  }
+  for (const SweepCase& c : cases)
+    if (std::size_t(c.lights) > a.lightBudget)
+      throw Error(c.name + ": " + std::to_string(c.lights) + " lights exceed the light budget of " +
+                  std::to_string(a.lightBudget));
+  for (const std::string& path : {a.csv, a.json})
+    if (!path.empty()) prepareTemporaryFor(path);  // fails early on an unwritable folder
+
+  const std::unique_ptr<gl::Context> context = openContext(gl::parseBackend(a.backend), a.verbose);
+  if (!context) return kExitNoContext;
+  const Scene scene = sweepScene(a.scene);
+  Sweep sweep(scene, settings);
+
+  nlohmann::json json = {
+      {"suite", a.suite},
+      {"scene", a.scene.empty() ? "generated room (scenes/sample.gltf's geometry)" : a.scene},
+      {"width", settings.width},
+      {"height", settings.height},
+      {"repeats", settings.repeats},
+      {"reference_seconds", settings.referenceSeconds},
+      {"max_cut", settings.maxCut},
+      {"backend", context->backend()},
+      {"gl_renderer", context->renderer()},
+      {"hardware_threads", std::thread::hardware_concurrency()},
+      {"runs", nlohmann::json::array()},
+  };
+  std::string csv = std::string(kColumns) + "\n";
+  const std::set<std::string> done =
+      a.resume ? resumeFrom(a, &json, &csv) : std::set<std::string>{};
+  const int steps = int(cases.size() * settings.variants.size()) + (stability ? a.frames : 0) + 1;
+  Progress progress(steps);
+  progress.step("1-light floor");
+  const double floorMs = sweep.floorMs();
+  json["floor_ms"] = floorMs;
+  auto save = [&] {
+    if (!a.csv.empty()) writeFileAtomic(a.csv, csv);
+    if (!a.json.empty()) writeFileAtomic(a.json, json.dump(1) + "\n");
+  };
+  int failures = 0;
+  for (const SweepCase& c : cases) {
+    if (done.count(c.name)) {
+      for (std::size_t i = 0; i < settings.variants.size(); ++i) progress.step(c.name + " (kept)");
+      continue;
+    }
+    const auto records =
+        sweep.run(c, [&](const std::string& what) { progress.step(c.name + " " + what); });
+    for (const RunRecord& r : records) {
+      csv += csvRow(r, floorMs) + "\n";
+      json["runs"].push_back(runJson(r));
+      if (!r.failure.empty()) ++failures;
+      if (a.verbose || !r.failure.empty()) {
+        progress.clear();
+        std::cerr << "manylight: " << c.name << " " << r.variant.label() << ": "
+                  << (r.failure.empty()
+                          ? number(r.renderMs) + " ms, max error " + number(r.errors.maxRelative)
+                          : "failed: " + r.failure)
+                  << "\n";
+      }
+    }
+    save();
+  }
+  if (stability && a.frames > 0) {
+    json["temporal"] = nlohmann::json::array();
+    const SweepCase turntable = layoutCase(LightLayout::Uniform, 4096);
+    for (const auto& t : sweep.temporal(turntable, a.frames, [&](const std::string& what) {
+           progress.step(turntable.name + " turntable " + what);
+         })) {
+      json["temporal"].push_back({{"case", t.caseName},
+                                  {"label", t.variant.label()},
+                                  {"frames", t.frames},
+                                  {"mean_change", jsonNumber(t.meanChange)},
+                                  {"max_change", jsonNumber(t.maxChange)},
+                                  {"failure", t.failure}});
+      if (!t.failure.empty()) ++failures;
+    }
+    save();
+  }
+  progress.clear();
+  std::cerr << "manylight: bench: " << cases.size() << " cases x " << settings.variants.size()
+            << " methods" << (failures ? ", " + std::to_string(failures) + " failed" : "") << "\n";
+  return failures ? kExitFailure : kExitOk;
+}
+
+}  // namespace manylight::cli

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The one command behind docs/benchmarks.md, docs/stability.md and docs/charts/: the
+# speed/accuracy sweep and the stability suite (`manylight bench`), the peers when f3d is
+# installed (bench/peers.sh), then the charts and pages (bench/report.py, gnuplot).
+# Run from the repository root after the build (README.md, command 1):
+#   bench/sweep.sh            the sweep: 640x480, 4 layouts x 6 counts up to 1,048,576,
+#                             every method, ε and mode (about 5 hours on the 2-core machine)
+#   bench/sweep.sh --quick    the same at 320x240 (about 1 hour): what docs/ shows today
+#   bench/sweep.sh --resume   go on with an interrupted sweep: finished cases are kept
+#   bench/sweep.sh --report   only redraw the charts and pages from docs/results/
+# Results (CSV and JSON) go to docs/results/, rewritten after every case.
+set -euo pipefail
+size=640x480
+resume=()
+report_only=false
+for a in "$@"; do
+  case "$a" in
+    --quick) size=320x240 ;;
+    --resume) resume=(--resume) ;;
+    --report) report_only=true ;;
+    *) echo "usage: bench/sweep.sh [--quick] [--resume] [--report]" >&2; exit 2 ;;
+  esac
+done
+bin="$PWD/build/bin"
+results="$PWD/docs/results"
+mkdir -p "$results"
+if ! $report_only; then
+  "$bin/manylight" bench --size "$size" "${resume[@]}" \
+    --csv "$results/sweep.csv" --json "$results/sweep.json"
+  "$bin/manylight" bench --suite stability "${resume[@]}" \
+    --csv "$results/stability.csv" --json "$results/stability.json"
+  if command -v f3d >/dev/null; then
+    bench/peers.sh "$results/peers.csv"
+  else
+    echo "sweep.sh: f3d is not installed (ci/install-deps.sh --peers); peers not measured" >&2
+  fi
+fi
+python3 bench/report.py "$results" docs
+echo "sweep.sh: docs/benchmarks.md, docs/stability.md and docs/charts/ written"

@@ -1,0 +1,301 @@
+#include "render/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "gl/context.h"
+#include "scene/error.h"
+
+namespace manylight {
+namespace {
+
+// Linux keeps a per-process high-water mark of resident memory (VmHWM), which writing "5"
+// to /proc/self/clear_refs resets to the current size. Where that is refused, the mark
+// covers the whole process so far.
+void resetPeakMemory() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
+double peakMemoryMb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    long long kb = 0;
+    if (std::sscanf(line.c_str(), "VmHWM: %lld kB", &kb) == 1) return double(kb) / 1024.0;
+  }
+  return 0.0;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+// A reference frame costs about this many light evaluations per millisecond at least
+// (issue 2 measured 280-440 M/s): used only to pick the warm-up's share of rows.
+constexpr double kSlowestEvaluationsPerMs = 2.0e5;
+
+}  // namespace
+
+std::string SweepVariant::label() const {
+  if (method != Method::Lightcuts) return methodName(method);
+  char eps[32];
+  std::snprintf(eps, sizeof eps, "%g", double(error));
+  return std::string("lightcuts-") + (mode == ErrorMode::Total ? "total-" : "node-") + eps;
+}
+
+std::vector<SweepVariant> expandVariants(const std::vector<Method>& methods,
+                                         const std::vector<ErrorMode>& modes,
+                                         const std::vector<float>& errors) {
+  std::vector<SweepVariant> out;
+  for (Method m : methods) {
+    if (m != Method::Lightcuts) {
+      out.push_back({m});
+      continue;
+    }
+    for (ErrorMode mode : modes)
+      for (float e : errors) out.push_back({m, mode, e});
+  }
+  return out;
+}
+
+SweepCase layoutCase(LightLayout layout, int lights) {
+  return {lightLayoutName(layout) + "-" + std::to_string(lights), layout, lights};
+}
+
+std::vector<SweepCase> stabilityCases() {
+  using L = LightLayout;
+  std::vector<SweepCase> cases = {
+      layoutCase(L::Coincident, 16384),
+      layoutCase(L::TwoGroups, 16384),
+      layoutCase(L::WideIntensities, 16384),
+      layoutCase(L::BrightAmongDim, 1 << 20),
+      layoutCase(L::Far, 16384),
+      layoutCase(L::SpotsAway, 16384),
+      layoutCase(L::OnSurfaces, 16384),
+  };
+  SweepCase capped = layoutCase(L::Uniform, 16384);
+  capped.name = "max-cut-16";
+  capped.maxCut = 16;
+  cases.push_back(capped);
+  for (int n : {1, 2, 3, 1023, 1025, 65535, 65537}) {
+    SweepCase c = layoutCase(L::Mixed, n);
+    c.name = "count-" + std::to_string(n);
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+Sweep::Sweep(const Scene& scene, const SweepSettings& settings)
+    : scene_(scene), settings_(settings) {
+  if (scene.cameras.empty()) throw Error("the sweep's scene has no camera");
+}
+
+double Sweep::floorMs() {
+  if (floorMs_ >= 0.0) return floorMs_;
+  const std::vector<Light> one = layoutLights(LightLayout::Uniform, 1, settings_.seed);
+  Renderer renderer(scene_, one, settings_.width, settings_.height, Method::Reference);
+  const View view = makeView(scene_.cameras[0], settings_.width, settings_.height);
+  // Frames this short take several frames to settle (16 ms falling to 10 ms at 320x240):
+  // warm up with three, and take the median of at least five.
+  FrameStats stats;
+  for (int i = 0; i < 3; ++i) renderer.render(view, {}, &stats);
+  std::vector<double> ms;
+  for (int i = 0; i < std::max(settings_.repeats, 5); ++i) {
+    renderer.render(view, {}, &stats);
+    ms.push_back(stats.renderMs);
+  }
+  return floorMs_ = median(ms);
+}
+
+std::vector<RunRecord> Sweep::run(const SweepCase& c,
+                                  const std::function<void(const std::string&)>& step) {
+  const int w = settings_.width, h = settings_.height;
+  const std::vector<Light> lights = layoutLights(c.layout, c.lights, settings_.seed);
+  const View view = makeView(scene_.cameras[0], w, h);
+  const double floor = floorMs();
+  auto blank = [&](const SweepVariant& v) {
+    RunRecord r;
+    r.caseName = c.name;
+    r.layout = c.layout;
+    r.lights = c.lights;
+    r.variant = v;
+    r.width = w;
+    r.height = h;
+    return r;
+  };
+
+  // The reference first: every other variant is compared with it.
+  step("reference");
+  RunRecord ref = blank(SweepVariant{});
+  Image reference;
+  std::vector<bool> rows;
+  try {
+    resetPeakMemory();
+    Renderer renderer(scene_, lights, w, h, Method::Reference);
+    // The warm-up lights a share of the rows small enough to take seconds, and its time
+    // estimates a whole frame's.
+    FrameSettings fs;
+    const double evaluations = double(lights.size()) * double(w) * double(h);
+    const int bands = (h + kRowBand - 1) / kRowBand;
+    fs.rowBandStride =
+        std::clamp(int(std::ceil(evaluations / (kSlowestEvaluationsPerMs * 5000.0))), 1, bands);
+    FrameStats stats;
+    reference = renderer.render(view, fs, &stats);
+    const double estimate = stats.renderMs * fs.rowBandStride;
+    std::vector<double> ms;
+    if (estimate > settings_.referenceSeconds * 1000.0) {
+      fs.rowBandStride =
+          int(std::min<double>(std::ceil(estimate / (settings_.referenceSeconds * 1000.0)), bands));
+      reference = renderer.render(view, fs, &stats);
+      ms.push_back(stats.renderMs * fs.rowBandStride);
+    } else {
+      fs.rowBandStride = 1;
+      for (int i = 0; i < std::max(settings_.repeats, 1); ++i) {
+        reference = renderer.render(view, fs, &stats);
+        ms.push_back(stats.renderMs);
+      }
+    }
+    ref.rowBandStride = fs.rowBandStride;
+    ref.repeats = int(ms.size());
+    ref.renderMs = median(ms);
+    ref.renderMsMin = *std::min_element(ms.begin(), ms.end());
+    ref.renderMsMax = *std::max_element(ms.begin(), ms.end());
+    ref.lightEvaluationsPerPixel = double(lights.size());
+    ref.peakRssMb = peakMemoryMb();
+    rows = rowsLit(h, ref.rowBandStride);
+    ref.errors = measureErrors(reference, reference, rows);
+  } catch (const std::exception& e) {
+    ref.failure = e.what();
+  }
+  if (ref.renderMs > 0.0) ref.ratioToReference = 1.0;
+  ref.ratioToFloor = floor > 0.0 ? ref.renderMs / floor : 0.0;
+
+  std::vector<RunRecord> out;
+  std::map<Method, std::unique_ptr<Renderer>> renderers;
+  for (const SweepVariant& v : settings_.variants) {
+    if (v.method == Method::Reference) {
+      out.push_back(ref);
+      continue;
+    }
+    step(v.label());
+    RunRecord r = blank(v);
+    r.rowBandStride = ref.rowBandStride;
+    try {
+      resetPeakMemory();
+      std::unique_ptr<Renderer>& renderer = renderers[v.method];
+      // A new renderer's first frame compiles programs and touches fresh buffers: warm up.
+      // The variants after it differ only in uniforms.
+      const bool warmUp = !renderer;
+      if (!renderer) renderer = std::make_unique<Renderer>(scene_, lights, w, h, v.method);
+      r.bakeMs = renderer->bakeMs();
+      FrameSettings fs;
+      fs.lightcuts.error = v.error;
+      fs.lightcuts.mode = v.mode;
+      fs.lightcuts.maxCut = c.maxCut > 0 ? c.maxCut : settings_.maxCut;
+      r.maxCut = fs.lightcuts.maxCut;
+      FrameStats stats;
+      Image image;
+      if (warmUp) renderer->render(view, fs, &stats);
+      std::vector<double> ms;
+      for (int i = 0; i < std::max(settings_.repeats, 1); ++i) {
+        image = renderer->render(view, fs, &stats);
+        ms.push_back(stats.renderMs);
+      }
+      r.repeats = int(ms.size());
+      r.renderMs = median(ms);
+      r.renderMsMin = *std::min_element(ms.begin(), ms.end());
+      r.renderMsMax = *std::max_element(ms.begin(), ms.end());
+      r.lightEvaluationsPerPixel = stats.cuts.lightEvaluations;
+      r.nodeEvaluationsPerPixel = stats.cuts.nodeEvaluations;
+      r.averageCut = stats.cuts.averageCut;
+      r.largestCut = stats.cuts.maxCut;
+      r.pixelsAtMaxCut = stats.cuts.pixelsAtMaxCut;
+      r.peakRssMb = peakMemoryMb();
+      if (ref.failure.empty()) r.errors = measureErrors(image, reference, rows);
+      if (ref.renderMs > 0.0) r.ratioToReference = r.renderMs / ref.renderMs;
+      if (floor > 0.0) r.ratioToFloor = r.renderMs / floor;
+    } catch (const std::exception& e) {
+      r.failure = e.what();
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
+                                             const std::function<void(const std::string&)>& step) {
+  const int w = settings_.width, h = settings_.height;
+  const std::vector<Light> lights = layoutLights(c.layout, c.lights, settings_.seed);
+  const Bounds bounds = scene_.bounds();
+  const glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : 0.5f * (bounds.min + bounds.max);
+
+  std::vector<Temporal> out;
+  std::map<Method, std::unique_ptr<Renderer>> renderers;
+  std::vector<std::vector<float>> previous;  // per variant: last frame's variant − reference
+  std::vector<double> sums;
+  std::vector<long long> counts;
+  Renderer reference(scene_, lights, w, h, Method::Reference);
+  for (const SweepVariant& v : settings_.variants) {
+    if (v.method == Method::Reference) continue;
+    Temporal t;
+    t.caseName = c.name;
+    t.variant = v;
+    t.frames = frames;
+    out.push_back(t);
+    auto& renderer = renderers[v.method];
+    if (!renderer) renderer = std::make_unique<Renderer>(scene_, lights, w, h, v.method);
+  }
+  previous.resize(out.size());
+  sums.assign(out.size(), 0.0);
+  counts.assign(out.size(), 0);
+  std::vector<bool> coveredBefore;
+  for (int f = 0; f < frames; ++f) {
+    step("frame " + std::to_string(f + 1));
+    const float angle = 6.28318530718f * float(f) / float(frames);
+    const View view = makeView(orbitCamera(scene_.cameras[0], centre, angle), w, h);
+    const Image r = reference.render(view, {});
+    std::vector<bool> covered(std::size_t(w) * h);
+    for (std::size_t p = 0; p < covered.size(); ++p) covered[p] = r.rgba[p * 4 + 3] > 0.0f;
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      Temporal& t = out[k];
+      if (!t.failure.empty()) continue;
+      try {
+        FrameSettings fs;
+        fs.lightcuts.error = t.variant.error;
+        fs.lightcuts.mode = t.variant.mode;
+        fs.readCutStats = false;
+        fs.lightcuts.maxCut = c.maxCut > 0 ? c.maxCut : settings_.maxCut;
+        const Image m = renderers[t.variant.method]->render(view, fs);
+        std::vector<float> diff(std::size_t(w) * h * 3);
+        for (std::size_t p = 0; p < covered.size(); ++p) {
+          double peak = 0.0, change = 0.0;
+          for (int ch = 0; ch < 3; ++ch) {
+            diff[p * 3 + ch] = m.rgba[p * 4 + ch] - r.rgba[p * 4 + ch];
+            peak = std::max(peak, double(r.rgba[p * 4 + ch]));
+            if (f > 0)
+              change = std::max(
+                  change, std::abs(double(diff[p * 3 + ch]) - double(previous[k][p * 3 + ch])));
+          }
+          if (f == 0 || !covered[p] || !coveredBefore[p]) continue;
+          if (std::isnan(change)) change = HUGE_VAL;
+          const double relative = change / std::max(peak, kRelativeErrorFloor);
+          sums[k] += relative;
+          ++counts[k];
+          t.maxChange = std::max(t.maxChange, relative);
+        }
+        previous[k] = std::move(diff);
+      } catch (const std::exception& e) {
+        t.failure = e.what();
+      }
+    }
+    coveredBefore = std::move(covered);
+  }
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k].meanChange = counts[k] ? sums[k] / double(counts[k]) : 0.0;
+  return out;
+}
+
+}  // namespace manylight
