@@ -252,13 +252,28 @@ std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
   sums.assign(out.size(), 0.0);
   counts.assign(out.size(), 0);
   std::vector<bool> coveredBefore;
+  std::vector<float> peakBefore;
   for (int f = 0; f < frames; ++f) {
     step("frame " + std::to_string(f + 1));
     const float angle = 6.28318530718f * float(f) / float(frames);
     const View view = makeView(orbitCamera(scene_.cameras[0], centre, angle), w, h);
     const Image r = reference.render(view, {});
+    // Each pixel's change is relative to its largest reference channel in either frame (a
+    // bright spot moving in or out counts at its own scale), but never to less than 1% of
+    // the frame's mean brightness, so near-black pixels do not make ratios huge.
     std::vector<bool> covered(std::size_t(w) * h);
-    for (std::size_t p = 0; p < covered.size(); ++p) covered[p] = r.rgba[p * 4 + 3] > 0.0f;
+    std::vector<float> peak(covered.size());
+    double brightness = 0.0;
+    long long coveredPixels = 0;
+    for (std::size_t p = 0; p < covered.size(); ++p) {
+      covered[p] = r.rgba[p * 4 + 3] > 0.0f;
+      peak[p] = std::max({r.rgba[p * 4], r.rgba[p * 4 + 1], r.rgba[p * 4 + 2]});
+      if (!covered[p]) continue;
+      brightness += peak[p];
+      ++coveredPixels;
+    }
+    const double floor =
+        std::max(0.01 * brightness / double(std::max(coveredPixels, 1ll)), kRelativeErrorFloor);
     for (std::size_t k = 0; k < out.size(); ++k) {
       Temporal& t = out[k];
       if (!t.failure.empty()) continue;
@@ -271,17 +286,17 @@ std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
         const Image m = renderers[t.variant.method]->render(view, fs);
         std::vector<float> diff(std::size_t(w) * h * 3);
         for (std::size_t p = 0; p < covered.size(); ++p) {
-          double peak = 0.0, change = 0.0;
+          double change = 0.0;
           for (int ch = 0; ch < 3; ++ch) {
             diff[p * 3 + ch] = m.rgba[p * 4 + ch] - r.rgba[p * 4 + ch];
-            peak = std::max(peak, double(r.rgba[p * 4 + ch]));
             if (f > 0)
               change = std::max(
                   change, std::abs(double(diff[p * 3 + ch]) - double(previous[k][p * 3 + ch])));
           }
           if (f == 0 || !covered[p] || !coveredBefore[p]) continue;
           if (std::isnan(change)) change = HUGE_VAL;
-          const double relative = change / std::max(peak, kRelativeErrorFloor);
+          const double relative =
+              change / std::max({double(peak[p]), double(peakBefore[p]), floor});
           sums[k] += relative;
           ++counts[k];
           t.maxChange = std::max(t.maxChange, relative);
@@ -292,6 +307,7 @@ std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
       }
     }
     coveredBefore = std::move(covered);
+    peakBefore = std::move(peak);
   }
   for (std::size_t k = 0; k < out.size(); ++k)
     out[k].meanChange = counts[k] ? sums[k] / double(counts[k]) : 0.0;

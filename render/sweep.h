@@ -91,8 +91,9 @@ class Sweep {
                              const std::function<void(const std::string&)>& step);
 
   // A turntable of `frames` frames through every variant but the reference: the mean and
-  // largest change from one frame to the next of (variant − reference), relative to the
-  // pixel's largest reference channel (floored as in image_errors.h), over covered pixels.
+  // largest change from one frame to the next of (variant − reference), per pixel covered
+  // in both frames (largest channel), relative to the pixel's largest reference channel in
+  // either frame, floored at 1% of the frame's mean brightness.
   struct Temporal {
     std::string caseName;
     SweepVariant variant;

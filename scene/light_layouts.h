@@ -21,7 +21,7 @@ enum class LightLayout {
   WideIntensities,  // intensities spread log-uniformly over 1e-6..1e6
   BrightAmongDim,   // one light as bright as all the others together
   Far,              // 1e5 units from the origin (float precision), scaled to light the room
-  SpotsAway,        // spot lights all pointing up, away from every surface
+  SpotsAway,        // spot lights all pointing up: only the back wall above them is lit
   OnSurfaces,       // lights a millimetre above the floor and the back wall
   EightBitColours,  // 8-bit sRGB colours as light lists give them, often saturated
 };
