@@ -33,6 +33,23 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
+// Fills a record's timing fields from its timed frames (at least one).
+void setTimes(RunRecord& r, const std::vector<double>& ms) {
+  r.repeats = int(ms.size());
+  r.renderMs = median(ms);
+  r.renderMsMin = *std::min_element(ms.begin(), ms.end());
+  r.renderMsMax = *std::max_element(ms.begin(), ms.end());
+}
+
+// The frame settings of a lightcuts variant in case `c`.
+FrameSettings variantSettings(const SweepVariant& v, const SweepCase& c, int defaultMaxCut) {
+  FrameSettings fs;
+  fs.lightcuts.error = v.error;
+  fs.lightcuts.mode = v.mode;
+  fs.lightcuts.maxCut = c.maxCut > 0 ? c.maxCut : defaultMaxCut;
+  return fs;
+}
+
 // A reference frame costs about this many light evaluations per millisecond at least
 // (issue 2 measured 280-440 M/s): used only to pick the warm-up's share of rows.
 constexpr double kSlowestEvaluationsPerMs = 2.0e5;
@@ -159,10 +176,7 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
       }
     }
     ref.rowBandStride = fs.rowBandStride;
-    ref.repeats = int(ms.size());
-    ref.renderMs = median(ms);
-    ref.renderMsMin = *std::min_element(ms.begin(), ms.end());
-    ref.renderMsMax = *std::max_element(ms.begin(), ms.end());
+    setTimes(ref, ms);
     ref.lightEvaluationsPerPixel = double(lights.size());
     ref.peakRssMb = peakMemoryMb();
     rows = rowsLit(h, ref.rowBandStride);
@@ -191,23 +205,21 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
       const bool warmUp = !renderer;
       if (!renderer) renderer = std::make_unique<Renderer>(scene_, lights, w, h, v.method);
       r.bakeMs = renderer->bakeMs();
-      FrameSettings fs;
-      fs.lightcuts.error = v.error;
-      fs.lightcuts.mode = v.mode;
-      fs.lightcuts.maxCut = c.maxCut > 0 ? c.maxCut : settings_.maxCut;
+      FrameSettings fs = variantSettings(v, c, settings_.maxCut);
       r.maxCut = fs.lightcuts.maxCut;
       FrameStats stats;
       Image image;
+      // Cut statistics are read back (outside the timed part) from the last frame only.
+      fs.readCutStats = false;
       if (warmUp) renderer->render(view, fs, &stats);
       std::vector<double> ms;
-      for (int i = 0; i < std::max(settings_.repeats, 1); ++i) {
+      const int repeats = std::max(settings_.repeats, 1);
+      for (int i = 0; i < repeats; ++i) {
+        fs.readCutStats = i == repeats - 1;
         image = renderer->render(view, fs, &stats);
         ms.push_back(stats.renderMs);
       }
-      r.repeats = int(ms.size());
-      r.renderMs = median(ms);
-      r.renderMsMin = *std::min_element(ms.begin(), ms.end());
-      r.renderMsMax = *std::max_element(ms.begin(), ms.end());
+      setTimes(r, ms);
       r.lightEvaluationsPerPixel = stats.cuts.lightEvaluations;
       r.nodeEvaluationsPerPixel = stats.cuts.nodeEvaluations;
       r.averageCut = stats.cuts.averageCut;
@@ -278,11 +290,8 @@ std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
       Temporal& t = out[k];
       if (!t.failure.empty()) continue;
       try {
-        FrameSettings fs;
-        fs.lightcuts.error = t.variant.error;
-        fs.lightcuts.mode = t.variant.mode;
+        FrameSettings fs = variantSettings(t.variant, c, settings_.maxCut);
         fs.readCutStats = false;
-        fs.lightcuts.maxCut = c.maxCut > 0 ? c.maxCut : settings_.maxCut;
         const Image m = renderers[t.variant.method]->render(view, fs);
         std::vector<float> diff(std::size_t(w) * h * 3);
         for (std::size_t p = 0; p < covered.size(); ++p) {
