@@ -72,6 +72,7 @@ struct RenderArgs {
   std::string ambient = "0,0,0", statsPath, errorMode = "node";
   float error = 0.02f;
   int maxCut = LightcutsSettings{}.maxCut;
+  int cutTile = LightcutsSettings{}.tileSize;
   int camera = -1;
   float exposure = 0.0f;
   SceneArgs input;
@@ -85,6 +86,7 @@ struct PlayArgs {
   std::string errorMode = "node";
   float error = 0.02f;
   int maxCut = LightcutsSettings{}.maxCut;
+  int cutTile = LightcutsSettings{}.tileSize;
   int camera = -1, frames = 0;
   float orbit = 360.0f, exposure = 0.0f, fps = 30.0f;
   SceneArgs input;

@@ -56,6 +56,12 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1, kMaxCutLimit));
   render
+      ->add_option("--cut-tile", r.cutTile,
+                   "lightcuts: pixels share the cut of their N x N square where the rule holds for "
+                   "them (render/tile_cuts.h); 1: a cut per pixel")
+      ->capture_default_str()
+      ->check(CLI::IsMember({1, 4, 8, 16, 32, 64}));
+  render
       ->add_option("--backend", r.backend,
                    "Context: auto (EGL device, EGL surfaceless, OSMesa), egl, osmesa")
       ->capture_default_str();
@@ -109,6 +115,12 @@ int main(int argc, char** argv) {
   playCmd->add_option("--max-cut", p.maxCut, "lightcuts: most nodes in a pixel's cut")
       ->capture_default_str()
       ->check(CLI::Range(1, kMaxCutLimit));
+  playCmd
+      ->add_option("--cut-tile", p.cutTile,
+                   "lightcuts: pixels share the cut of their N x N square where the rule holds for "
+                   "them (render/tile_cuts.h); 1: a cut per pixel")
+      ->capture_default_str()
+      ->check(CLI::IsMember({1, 4, 8, 16, 32, 64}));
   playCmd->add_option("--exposure", p.exposure, "Exposure in EV")->capture_default_str();
   playCmd->add_option("--backend", p.backend, "Context: auto, egl, osmesa")->capture_default_str();
   addSceneOptions(playCmd, p.input);

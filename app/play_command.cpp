@@ -72,6 +72,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   r.method = parseMethod(a.method);
   r.lightcuts.error = a.error;
   r.lightcuts.maxCut = a.maxCut;
+  r.lightcuts.tileSize = a.cutTile;
   r.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
   r.lightcuts.trees = a.input.trees();
   request.frames = a.frames;

@@ -62,6 +62,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     stats["avg_cut_size"] = c.averageCut;
     stats["max_cut_size"] = c.maxCut;
     stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
+    stats["pixels_shared_cut"] = c.pixelsSharedCut;
     stats["light_evaluations_per_pixel"] = c.lightEvaluations;
     stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
     stats["covered_pixels"] = c.pixels;
@@ -70,6 +71,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
       stats["error_mode"] = a.errorMode;
     }
     stats["max_cut"] = request.lightcuts.maxCut;
+    stats["cut_tile"] = request.lightcuts.tileSize;
     stats["tree_split"] = baked.hasTrees
                               ? (baked.trees.split == Split::Metric ? "metric" : "longest-axis")
                               : a.input.treeSplit;
@@ -105,6 +107,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.method = parseMethod(a.method);
   request.lightcuts.error = a.error;
   request.lightcuts.maxCut = a.maxCut;
+  request.lightcuts.tileSize = a.cutTile;
   request.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
   request.lightcuts.trees = a.input.trees();
   const gl::Backend backend = gl::parseBackend(a.backend);

@@ -48,7 +48,7 @@ uniform vec2 uColourSlack;  // η and ζ of the node colour coding
 
 layout(location = 0) out vec4 oRadiance;
 // x: cut size, y: light evaluations, z: node bound evaluations, w: 1, or 2 where the cut hit
-// uMaxCut (0 stays on background pixels).
+// uMaxCut, 3 where the pixel took its tile's cut (0 stays on background pixels).
 layout(location = 1) out vec4 oCutStats;
 
 const float kUnbounded = 3.0e38;
@@ -345,6 +345,64 @@ void totalRuleCut() {
   atMax = true;  // out of loop iterations before the rule held
 }
 
+#ifdef TILE_CUTS
+// The cut of this pixel's tile, found on the CPU with bounds that hold over the whole tile
+// (render/tile_cuts.h documents it and the texels): sums its representatives and checks
+// the stopping rule for this pixel. Returns false, leaving the pixel to cut for itself,
+// when the tile has no shared cut or the rule does not hold here.
+uniform usamplerBuffer uTileCuts;
+uniform int uTileSize;
+uniform int uTilesX;
+
+vec3 unusedL;
+// One line: GLSL 3.30 has no line continuation. Two entries per iteration, as the reference
+// path sums four lights per iteration.
+#define TILE_SUM(first, count, TERM) for (k = first; k + 2 <= first + count; k += 2) { uvec4 e0 = texelFetch(uTileCuts, k); uvec4 e1 = texelFetch(uTileCuts, k + 1); sum += TERM(int(e0.x)) * uintBitsToFloat(e0.yzw) + TERM(int(e1.x)) * uintBitsToFloat(e1.yzw); } if (k < first + count) { uvec4 e0 = texelFetch(uTileCuts, k); sum += TERM(int(e0.x)) * uintBitsToFloat(e0.yzw); }
+#ifdef HAS_SPECULAR
+#define DIRECTIONAL_T(i) unitTerm(0, i)
+#define POINT_T(i) unitTerm(1, i)
+#define SPOT_T(i) unitTerm(2, i)
+#else
+#define DIRECTIONAL_T(i) max(dot(s.normal, texelFetch(uLights, 3 * (i)).xyz), 0.0)
+#define POINT_T(i) pointFalloff(texelFetch(uLights, 3 * (i)), s.position, s.normal, unusedL)
+#define SPOT_T(i) unitIrradiance(2, i, s.position, s.normal, unusedL)
+#endif
+
+bool tileCut() {
+  ivec2 tile = ivec2(gl_FragCoord.xy) / uTileSize;
+  int t = tile.y * uTilesX + tile.x;
+  uvec4 head = texelFetch(uTileCuts, 2 * t);
+  uvec4 check = texelFetch(uTileCuts, 2 * t + 1);
+  if ((check.w & 1u) != 0u) return false;
+  vec3 bound = s.albedo * uintBitsToFloat(check.xyz);
+  ivec3 counts = ivec3(head.yzw);
+  vec3 sum = vec3(0.0);
+  int k;
+  int first = int(head.x);
+  TILE_SUM(first, counts.x, DIRECTIONAL_T);
+  first += counts.x;
+  TILE_SUM(first, counts.y, POINT_T);
+  first += counts.y;
+  TILE_SUM(first, counts.z, SPOT_T);
+#ifndef HAS_SPECULAR
+  sum *= s.albedo / kPi;
+#endif
+  int count = counts.x + counts.y + counts.z;
+#ifndef HAS_SPECULAR
+  lightEvaluations += count;  // unitTerm counts them itself
+#endif
+  iterationsLeft -= count / 2 + 3;
+  float b = maxOf(bound);
+  bool holds = uErrorMode == 0 ? b <= uError * maxOf(sum)
+                               : b <= uError * maxOf(sum - bound) || b <= kAbsoluteFloor;
+  if (holds) {
+    estimateSum = sum;
+    cutSize = count;
+  }
+  return holds;
+}
+#endif
+
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 normal = texelFetch(uNormal, px, 0);
@@ -359,6 +417,13 @@ void main() {
 #ifdef DISTANCE
   cutPass(0.0, 2);
 #else
+#ifdef TILE_CUTS
+  if (tileCut()) {
+    oRadiance = vec4(estimateSum, 0.0);
+    oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations), 3.0);
+    return;
+  }
+#endif
   if (uErrorMode == 0) {
     nodeRuleCut();
   } else {

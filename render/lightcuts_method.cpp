@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "gl/context.h"
 #include "render/lighting_inputs.h"
@@ -20,6 +21,7 @@ LightcutsMethod::LightcutsMethod(PackedTrees packed, const GBuffer& gbuffer, boo
       distance_(distance),
       width_(gbuffer.width()),
       height_(gbuffer.height()) {
+  if (!distance) tileCutter_ = std::make_unique<TileCutter>(layout_);
   std::vector<std::uint32_t>& words = layout_.words;
   const std::size_t nodeWords = words.size();
   if (words.empty()) words.assign(4, 0u);  // no lights: keep the sampler complete
@@ -57,6 +59,13 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   if (scene.hasSpecular()) defines.push_back("HAS_SPECULAR");
   const NodeColourCoder& colour = layout_.colour;
   if (colour.coding() == NodeColourCoding::Fitted) defines.push_back("FITTED_COLOUR");
+  const int tileSize = distance_ ? 1 : std::max(settings.tileSize, 1);
+  if (tileSize > 1) {
+    defines.push_back("TILE_CUTS");
+    cutTiles(gbuffer, settings);
+  } else {
+    tileInfo_ = {};
+  }
   const gl::Program& shader = program(defines);
   shader.use();
 
@@ -80,9 +89,39 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   glUniform1i(shader.uniform("uErrorMode"), settings.mode == ErrorMode::Total ? 1 : 0);
   glUniform1i(shader.uniform("uMaxCut"), maxCut);
   glUniform1f(shader.uniform("uInfluence"), 1.0f / std::sqrt(std::max(settings.error, 1e-6f)));
+  if (tileSize > 1) {
+    glActiveTexture(GL_TEXTURE6);
+    glBindTexture(GL_TEXTURE_BUFFER, tileCuts_.texture.id());
+    glUniform1i(shader.uniform("uTileCuts"), 6);
+    glUniform1i(shader.uniform("uTileSize"), tileInfo_.tileSize);
+    glUniform1i(shader.uniform("uTilesX"), tileInfo_.tilesX);
+  }
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_BLEND);
   glActiveTexture(GL_TEXTURE0);
+}
+
+void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& settings) const {
+  const std::size_t plane = std::size_t(width_) * height_ * 4;
+  readback_.resize(3 * plane);
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.geometryFramebuffer().id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  const GBuffer::Target targets[3] = {GBuffer::kPosition, GBuffer::kNormal, GBuffer::kSpecular};
+  for (int i = 0; i < 3; ++i) {
+    glReadBuffer(GL_COLOR_ATTACHMENT0 + targets[i]);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, readback_.data() + i * plane);
+  }
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  GBufferPixels pixels{width_, height_, readback_.data(), readback_.data() + plane,
+                       readback_.data() + 2 * plane};
+  const CutRule rule{settings.error, settings.mode == ErrorMode::Total,
+                     std::clamp(settings.maxCut, 1, kMaxCutLimit)};
+  const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  tileInfo_ = tileCutter_->cut(pixels, std::max(settings.tileSize, 1), rule, threads);
+  tileCuts_ = gl::uploadTextureBuffer(tileInfo_.texels.data(), tileInfo_.texels.size() / 4,
+                                      GL_RGBA32UI, "tile cuts");
+  tileInfo_.texels = {};
 }
 
 CutStats LightcutsMethod::cutStats() const {
@@ -103,7 +142,9 @@ CutStats LightcutsMethod::cutStats() const {
     lightEvals += texels[i + 1];
     nodeEvals += texels[i + 2];
     stats.maxCut = std::max(stats.maxCut, int(texels[i]));
-    if (texels[i + 3] > 1.5f) {
+    const int kind = int(texels[i + 3] + 0.5f);  // 1 own cut, 2 own cut at the maximum, 3 tile's
+    if (kind == 3) ++stats.pixelsSharedCut;
+    if (kind == 2) {
       ++stats.pixelsAtMaxCut;
       const std::size_t pixel = i / 4, x = pixel % width_, y = pixel / width_;
       stats.atMaxCut[(height_ - 1 - y) * width_ + x] = 1;  // GL rows run bottom-up
@@ -112,7 +153,7 @@ CutStats LightcutsMethod::cutStats() const {
   if (stats.pixels > 0) {
     stats.averageCut = cut / stats.pixels;
     stats.lightEvaluations = lightEvals / stats.pixels;
-    stats.nodeEvaluations = nodeEvals / stats.pixels;
+    stats.nodeEvaluations = (nodeEvals + double(tileInfo_.boundEvaluations)) / stats.pixels;
   }
   return stats;
 }

@@ -2,6 +2,7 @@
 // Lightcuts: the light trees of bake/light_tree.h in a node texture, and a per-pixel cut
 // through them in the fragment shader (glsl/lighting_lightcuts.frag documents the bounds
 // and stopping rules).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "gl/texture_buffer.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
+#include "render/tile_cuts.h"
 #include "scene/camera.h"
 
 namespace manylight {
@@ -20,6 +22,10 @@ struct LightcutsSettings {
   float error = 0.02f;  // ε
   ErrorMode mode = ErrorMode::Node;
   int maxCut = 1000;  // nodes per cut; at most kMaxCutLimit
+  // Pixels share the cut of their tile of tileSize × tileSize pixels where it holds for
+  // them (render/tile_cuts.h); 1: every pixel finds its own cut. Not for the distance
+  // criterion.
+  int tileSize = 16;
   TreeOptions trees;  // how the trees are built and packed (used when they are built)
 };
 
@@ -34,8 +40,10 @@ struct CutStats {
   double averageCut = 0.0;
   int maxCut = 0;
   long long pixelsAtMaxCut = 0;
+  long long pixelsSharedCut = 0;       // pixels that took their tile's cut (render/tile_cuts.h)
   double lightEvaluations = 0.0;       // per pixel
-  double nodeEvaluations = 0.0;        // per pixel (error bounds or distance tests)
+  double nodeEvaluations = 0.0;        // per pixel (error bounds or distance tests), with the
+                                       // tile cuts' bounds on the CPU spread over the pixels
   std::vector<std::uint8_t> atMaxCut;  // per pixel, rows top-down: 1 where the cut hit the maximum
 };
 
@@ -63,8 +71,15 @@ class LightcutsMethod {
  private:
   const gl::Program& program(const std::vector<std::string>& defines) const;
 
+  // Finds the tile cuts on the CPU, from the G-buffer read back.
+  void cutTiles(const GBuffer& gbuffer, const LightcutsSettings& settings) const;
+
   PackedTrees layout_;  // bases, leaf counts, colour coding (the words are dropped after upload)
   gl::TextureBuffer nodes_;
+  std::unique_ptr<TileCutter> tileCutter_;  // null for the distance criterion
+  mutable gl::TextureBuffer tileCuts_;      // this frame's (render/tile_cuts.h)
+  mutable TileCuts tileInfo_;               // its sizes and counts (the texels are dropped)
+  mutable std::vector<float> readback_;
   bool distance_;
   int width_, height_;
   gl::Texture statsTarget_;

@@ -1,0 +1,91 @@
+#pragma once
+// Cuts shared by the pixels of a screen tile (no GL here; render/lightcuts_method.cpp uploads
+// the result and glsl/lighting_lightcuts.frag uses it).
+//
+// Per pixel, most of a lightcut's cost on a software rasteriser is finding the cut: error
+// bounds for about twice as many nodes as the cut holds, in loops whose length differs
+// from pixel to pixel. Neighbouring pixels mostly want the same cut. So, per square of
+// tileSize × tileSize pixels, the CPU finds one cut with bounds that hold over the whole
+// square — the nearest and farthest distances from the box of its shading points to a
+// node's box, cosines widened by the spread of its normals around their mean — refining
+// the node with the largest bound first, as the paper does, until the stopping rule holds
+// against the estimate at the square's centre with a margin (kMargin in the .cpp). A square
+// whose cut would exceed the maximum is split into quarters, down to kFinestTile. Nodes
+// that cannot reach any point of the square are left out. Each pixel then only sums the
+// cut's representatives (the same loop for every pixel of the square) and checks the rule
+// for itself with the square's bounds, which hold at every one of its pixels:
+//   node rule:  max(albedo ∘ U) ≤ ε · max(estimate), U the channel-wise largest upper
+//               bound over the cut's internal nodes;
+//   total rule: max(albedo ∘ B) ≤ ε · max(estimate − albedo ∘ B) or ≤ the absolute floor,
+//               B the sum of (upper − lower) over the cut.
+// U and B are per unit albedo (Lambert only), so the check is exactly the per-pixel rule
+// with bounds at least the pixel's own: the total rule's guarantee is kept. A pixel whose
+// check fails, and every pixel of a square left to per-pixel cuts (a specular material, a
+// cut over the maximum even at the finest size), walks its own cut as before.
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "bake/light_tree_pack.h"
+
+namespace manylight {
+
+// What the rule asks of a cut (see LightcutsSettings).
+struct CutRule {
+  float error = 0.02f;  // ε
+  bool total = false;   // the total rule; else the node rule
+  int maxCut = 1000;
+};
+
+// The G-buffer as read back, rows bottom-up (GL's order), RGBA floats per pixel.
+struct GBufferPixels {
+  int width = 0, height = 0;
+  const float* position = nullptr;  // xyz; w: Phong exponent
+  const float* normal = nullptr;    // xyz; w: 0 on background pixels
+  const float* specular = nullptr;  // rgb: Phong specular colour
+};
+
+// The frame's tile cuts as texels of 4 words (GL_RGBA32UI), one texture buffer:
+//   texel 2t      tile t (row-major, bottom-up): first entry texel, then the number of
+//                 entries of the directional, point and spot trees, in that order
+//   texel 2t + 1  U (node rule) or B (total rule) per unit albedo, as float bits; flags
+//                 (kTilePerPixel: the tile's pixels cut for themselves)
+//   from texel 2·tiles: entries, (light texture slot, the node's intensity RGB float bits)
+struct TileCuts {
+  int tileSize = 0, tilesX = 0, tilesY = 0;
+  std::vector<std::uint32_t> texels;  // 4 words each
+  long long boundEvaluations = 0;     // on the CPU, all tiles together
+  int sharedTiles = 0;                // squares with a shared cut
+  int perPixelTiles = 0;              // covered squares left to per-pixel cuts
+};
+
+inline constexpr std::uint32_t kTilePerPixel = 1u;
+// A square whose cut would exceed the maximum is split into quarters, down to this size;
+// the texels hold one header per square of this size (several may share a cut).
+inline constexpr int kFinestTile = 4;
+
+class TileCutter {
+ public:
+  // Keeps a copy of the packed trees' words (the shader's node texture).
+  explicit TileCutter(const PackedTrees& packed);
+
+  // Cuts for every tile of the frame, on `threads` threads.
+  TileCuts cut(const GBufferPixels& pixels, int tileSize, const CutRule& rule, int threads) const;
+
+ private:
+  struct Node;
+  struct Region;
+  struct Result;
+  Node node(int tree, int i) const;
+  Result cutTile(const Region& region, const CutRule& rule,
+                 std::vector<std::uint32_t>& entries) const;
+  static bool region(const GBufferPixels& px, int x0, int y0, int x1, int y1, Region& g,
+                     bool& perPixel);
+
+  std::vector<std::uint32_t> words_;
+  int base_[3], leaves_[3];
+  NodeColourCoder colour_;
+  std::vector<int> leafOfSlot_;  // light texture slot → its leaf node in its tree
+};
+
+}  // namespace manylight

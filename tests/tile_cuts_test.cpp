@@ -1,0 +1,149 @@
+// Tile cuts (render/tile_cuts.h) without GL: every shared cut, evaluated in double precision
+// at every pixel of its square, is within the bounds the pixels check against.
+#include "render/tile_cuts.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "bake/light_pack.h"
+#include "bake/light_tree.h"
+#include "bake/light_tree_pack.h"
+#include "scene/light_layouts.h"
+#include "scene/shading_model.h"
+
+namespace manylight {
+namespace {
+
+constexpr int kSize = 64;
+
+// A G-buffer of a floor (y = 0, facing up) on the left, with a patch of ceiling showing
+// through it, a wall (x = 3, facing −x) on the right, and a band of background at the top;
+// rows bottom-up as GL reads them.
+struct SyntheticGBuffer {
+  std::vector<float> position, normal, specular;
+  SyntheticGBuffer()
+      : position(kSize * kSize * 4), normal(kSize * kSize * 4), specular(kSize * kSize * 4) {
+    for (int y = 0; y < kSize; ++y) {
+      for (int x = 0; x < kSize; ++x) {
+        const std::size_t i = (std::size_t(y) * kSize + x) * 4;
+        if (y >= kSize - 6) continue;  // background
+        const float u = float(x) / kSize, v = float(y) / kSize;
+        glm::vec3 p, n;
+        if (x < kSize * 5 / 8 && y >= 40 && y < 48 && (x + y) % 3 == 0) {
+          // A patch of the ceiling seen through gaps: squares whose normals spread 180°.
+          p = {-3.0f + 9.6f * u, 2.5f, -3.0f + 6.0f * v};
+          n = {0.0f, -1.0f, 0.0f};
+        } else if (x < kSize * 5 / 8) {
+          p = {-3.0f + 9.6f * u, 0.0f, -3.0f + 6.0f * v};
+          n = {0.0f, 1.0f, 0.0f};
+        } else {
+          p = {3.0f, 6.0f * (u - 0.625f) * 2.0f, -3.0f + 6.0f * v};
+          n = {-1.0f, 0.0f, 0.0f};
+        }
+        std::memcpy(&position[i], &p, 12);
+        std::memcpy(&normal[i], &n, 12);
+        normal[i + 3] = 1.0f;
+      }
+    }
+  }
+  GBufferPixels pixels() const {
+    return {kSize, kSize, position.data(), normal.data(), specular.data()};
+  }
+};
+
+float bitsToFloat(std::uint32_t w) {
+  float f;
+  std::memcpy(&f, &w, 4);
+  return f;
+}
+
+// Per unit albedo: the exact radiance of all lights at (p, n), and of a light per unit
+// colour · intensity.
+glm::dvec3 unitRadiance(Light light, glm::dvec3 p, glm::dvec3 n) {
+  light.colour = glm::vec3(1.0f);
+  light.intensity = 1.0f;
+  glm::dvec3 l;
+  return shading::irradiance(light, p, n, l) / shading::kPi;
+}
+
+struct Checked {
+  int sharedPixels = 0, failing = 0;
+  double worstOverBound = 0.0;  // largest error / bound
+};
+
+Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tileSize) {
+  const SyntheticGBuffer g;
+  const PackedTrees packed = packLightTrees(buildLightTrees(lights));
+  const LightOrder order = lightOrder(lights);
+  const TileCutter cutter(packed);
+  const TileCuts cuts = cutter.cut(g.pixels(), tileSize, CutRule{epsilon, true, 8000}, 2);
+  EXPECT_EQ(cuts.tileSize, kFinestTile);
+  Checked c;
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      const std::size_t i = (std::size_t(y) * kSize + x) * 4;
+      if (g.normal[i + 3] == 0.0f) continue;
+      const std::uint32_t* head =
+          cuts.texels.data() +
+          (std::size_t(y / cuts.tileSize) * cuts.tilesX + x / cuts.tileSize) * 8;
+      if (head[7] & kTilePerPixel) continue;
+      const glm::dvec3 p(g.position[i], g.position[i + 1], g.position[i + 2]);
+      const glm::dvec3 n(g.normal[i], g.normal[i + 1], g.normal[i + 2]);
+      glm::dvec3 exact(0.0), estimate(0.0);
+      for (const Light& l : lights)
+        exact += unitRadiance(l, p, n) * glm::dvec3(l.colour) * double(l.intensity);
+      const int count = int(head[1] + head[2] + head[3]);
+      for (int k = 0; k < count; ++k) {
+        const std::uint32_t* e = cuts.texels.data() + (std::size_t(head[0]) + k) * 4;
+        const Light& rep = lights[std::size_t(order.scene[e[0]])];
+        estimate += unitRadiance(rep, p, n) *
+                    glm::dvec3(bitsToFloat(e[1]), bitsToFloat(e[2]), bitsToFloat(e[3]));
+      }
+      const glm::dvec3 bound(bitsToFloat(head[4]), bitsToFloat(head[5]), bitsToFloat(head[6]));
+      ++c.sharedPixels;
+      for (int ch = 0; ch < 3; ++ch) {
+        const double error = std::abs(estimate[ch] - exact[ch]);
+        // Float bounds and decoding against double sums: 1e-4 of the pixel, and a floor.
+        const double allowed = bound[ch] + 1e-4 * exact[ch] + 1e-9;
+        if (error > allowed) ++c.failing;
+        if (bound[ch] > 0.0) c.worstOverBound = std::max(c.worstOverBound, error / bound[ch]);
+      }
+    }
+  }
+  return c;
+}
+
+TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
+  const struct {
+    const char* name;
+    LightLayout layout;
+    int count;
+  } cases[] = {{"uniform", LightLayout::Uniform, 2000},
+               {"mixed", LightLayout::Mixed, 1500},
+               {"clustered", LightLayout::Clustered, 2000},
+               {"two", LightLayout::Mixed, 2}};
+  for (const auto& k : cases) {
+    for (const int tile : {4, 16}) {
+      const Checked c = checkTotalRule(layoutLights(k.layout, k.count, 7), 0.02f, tile);
+      SCOPED_TRACE(std::string(k.name) + " tile " + std::to_string(tile));
+      EXPECT_GT(c.sharedPixels, kSize * kSize / 2);  // most pixels share a cut
+      EXPECT_EQ(c.failing, 0);
+      EXPECT_LE(c.worstOverBound, 1.0001);
+    }
+  }
+}
+
+TEST(TileCuts, SpecularPixelsAreLeftToThemselves) {
+  SyntheticGBuffer g;
+  g.specular[0] = 0.5f;  // pixel (0, 0): its square cuts per pixel
+  const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 100, 7);
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)));
+  const GBufferPixels px{kSize, kSize, g.position.data(), g.normal.data(), g.specular.data()};
+  const TileCuts cuts = cutter.cut(px, 16, CutRule{}, 1);
+  EXPECT_EQ(cuts.texels[7] & kTilePerPixel, kTilePerPixel);  // the finest square holding it
+  EXPECT_EQ(cuts.texels[8 + 7] & kTilePerPixel, 0u);         // its neighbour shares a cut
+}
+
+}  // namespace
+}  // namespace manylight
