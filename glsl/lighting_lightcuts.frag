@@ -354,19 +354,16 @@ uniform usamplerBuffer uTileCuts;
 uniform int uTileSize;
 uniform int uTilesX;
 
+// Entries of the directional and point trees hold their representative's direction or
+// position (and 1/range²) themselves, so the loop reads the tile's entries in order instead
+// of lights scattered over the light texture; spot entries name the light (the cone needs
+// the whole light). Pixels on a shared cut are Lambert only (render/tile_cuts.h), so the sum
+// is of irradiance, times albedo/π at the end. One line each: GLSL 3.30 has no line
+// continuation. Two entries per iteration, as the reference path sums four lights.
+#define EMBEDDED_SUM(first, count, TERM) for (k = first; k + 4 <= first + 2 * count; k += 4) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); vec4 c0 = uintBitsToFloat(texelFetch(uTileCuts, k + 1)); vec4 a1 = uintBitsToFloat(texelFetch(uTileCuts, k + 2)); vec4 c1 = uintBitsToFloat(texelFetch(uTileCuts, k + 3)); sum += TERM(a0) * c0.rgb + TERM(a1) * c1.rgb; } if (k < first + 2 * count) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); sum += TERM(a0) * uintBitsToFloat(texelFetch(uTileCuts, k + 1)).rgb; }
+#define DIRECTIONAL_T(a) max(dot(s.normal, a.xyz), 0.0)
+#define POINT_T(a) pointFalloff(a, s.position, s.normal, unusedL)
 vec3 unusedL;
-// One line: GLSL 3.30 has no line continuation. Two entries per iteration, as the reference
-// path sums four lights per iteration.
-#define TILE_SUM(first, count, TERM) for (k = first; k + 2 <= first + count; k += 2) { uvec4 e0 = texelFetch(uTileCuts, k); uvec4 e1 = texelFetch(uTileCuts, k + 1); sum += TERM(int(e0.x)) * uintBitsToFloat(e0.yzw) + TERM(int(e1.x)) * uintBitsToFloat(e1.yzw); } if (k < first + count) { uvec4 e0 = texelFetch(uTileCuts, k); sum += TERM(int(e0.x)) * uintBitsToFloat(e0.yzw); }
-#ifdef HAS_SPECULAR
-#define DIRECTIONAL_T(i) unitTerm(0, i)
-#define POINT_T(i) unitTerm(1, i)
-#define SPOT_T(i) unitTerm(2, i)
-#else
-#define DIRECTIONAL_T(i) max(dot(s.normal, texelFetch(uLights, 3 * (i)).xyz), 0.0)
-#define POINT_T(i) pointFalloff(texelFetch(uLights, 3 * (i)), s.position, s.normal, unusedL)
-#define SPOT_T(i) unitIrradiance(2, i, s.position, s.normal, unusedL)
-#endif
 
 bool tileCut() {
   ivec2 tile = ivec2(gl_FragCoord.xy) / uTileSize;
@@ -379,18 +376,17 @@ bool tileCut() {
   vec3 sum = vec3(0.0);
   int k;
   int first = int(head.x);
-  TILE_SUM(first, counts.x, DIRECTIONAL_T);
-  first += counts.x;
-  TILE_SUM(first, counts.y, POINT_T);
-  first += counts.y;
-  TILE_SUM(first, counts.z, SPOT_T);
-#ifndef HAS_SPECULAR
+  EMBEDDED_SUM(first, counts.x, DIRECTIONAL_T);
+  first += 2 * counts.x;
+  EMBEDDED_SUM(first, counts.y, POINT_T);
+  first += 2 * counts.y;
+  for (k = first; k < first + counts.z; ++k) {
+    uvec4 e = texelFetch(uTileCuts, k);
+    sum += unitIrradiance(2, int(e.x), s.position, s.normal, unusedL) * uintBitsToFloat(e.yzw);
+  }
   sum *= s.albedo / kPi;
-#endif
   int count = counts.x + counts.y + counts.z;
-#ifndef HAS_SPECULAR
-  lightEvaluations += count;  // unitTerm counts them itself
-#endif
+  lightEvaluations += count;
   iterationsLeft -= count / 2 + 3;
   float b = maxOf(bound);
   bool holds = uErrorMode == 0 ? b <= uError * maxOf(sum)

@@ -20,6 +20,9 @@ constexpr float kAbsoluteFloor = 1e-6f;        // glsl/lighting_lightcuts.frag
 // times this margin, so that most pixels, whose estimates differ from the centre's, pass
 // their own check.
 constexpr float kMargin = 0.5f;
+// A square whose cut filled up is split into quarters only if the cut's measure was within
+// this factor of the rule's target.
+constexpr float kSplitShortfall = 8.0f;
 
 float bitsToFloat(std::uint32_t w) {
   float f;
@@ -59,14 +62,6 @@ float widenDown(float c, float cg, float sg) {
 
 }  // namespace
 
-// A node as glsl/light_tree.glsl's fetchNode reads it.
-struct TileCutter::Node {
-  glm::vec3 boxMin, boxMax, intensity, axis{0.0f};
-  int representative;
-  float invRange2, w2, sinTheta = 0.0f;
-  bool leaf;
-};
-
 // The tile's shading points: their box, and a cone around `axis` holding their normals.
 struct TileCutter::Region {
   glm::vec3 pMin, pMax, axis;
@@ -79,13 +74,16 @@ struct TileCutter::Result {
   glm::vec3 check{0.0f};
   bool perPixel = false;
   long long bounds = 0;
+  float shortfall = 0.0f;  // a full cut: how far its measure was above the rule's target
 };
 
-TileCutter::TileCutter(const PackedTrees& packed) : words_(packed.words), colour_(packed.colour) {
+TileCutter::TileCutter(const PackedTrees& packed) : colour_(packed.colour) {
   int lights = 0;
   for (int t = 0; t < 3; ++t) {
-    base_[t] = packed.base[t];
     leaves_[t] = packed.leaves[t];
+    const int count = leaves_[t] > 0 ? 2 * leaves_[t] - 1 : 0;
+    nodes_[t].reserve(std::size_t(count));
+    for (int i = 0; i < count; ++i) nodes_[t].push_back(decode(packed, t, i));
     for (int i = leaves_[t] - 1; i < 2 * leaves_[t] - 1; ++i) {
       lights = std::max(lights, node(t, i).representative + 1);
     }
@@ -99,17 +97,17 @@ TileCutter::TileCutter(const PackedTrees& packed) : words_(packed.words), colour
   }
 }
 
-TileCutter::Node TileCutter::node(int tree, int i) const {
-  const std::uint32_t* w = words_.data() + base_[tree] +
+TileCutter::Node TileCutter::decode(const PackedTrees& packed, int tree, int i) {
+  const std::uint32_t* w = packed.words.data() + packed.base[tree] +
                            std::size_t(tree == 2 ? layout::kSpotNodeWords : layout::kNodeWords) * i;
   Node n;
   n.boxMin = {bitsToFloat(w[0]), bitsToFloat(w[1]), bitsToFloat(w[2])};
   n.representative = int(w[3]);
   n.invRange2 = bitsToFloat(w[7]);
-  n.leaf = i >= leaves_[tree] - 1;
+  n.leaf = i >= packed.leaves[tree] - 1;
   const glm::vec3 words46{bitsToFloat(w[4]), bitsToFloat(w[5]), bitsToFloat(w[6])};
   n.boxMax = n.leaf ? n.boxMin : words46;
-  n.intensity = n.leaf ? words46 : colour_.decode(w[8]);
+  n.intensity = n.leaf ? words46 : packed.colour.decode(w[8]);
   n.w2 = bitsToFloat(w[9]);
   if (tree == 2) {
     n.axis = {bitsToFloat(w[10]), bitsToFloat(w[11]), bitsToFloat(w[12])};
@@ -255,7 +253,8 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
         Square sq{x0, y0, size, Result{}, mine.size()};
         if (!perPixel) sq.result = cutTile(g, rule, mine);
         sq.result.perPixel = sq.result.perPixel || perPixel;
-        if (sq.result.perPixel && size > fine) {
+        // A cut that filled up far from its target would fill up in the quarters too.
+        if (sq.result.perPixel && size > fine && sq.result.shortfall < kSplitShortfall) {
           // Smaller squares have tighter bounds: try the four quarters.
           mine.resize(sq.entry);
           const int h = size / 2;
@@ -302,8 +301,9 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
       }
       if (r.perPixel || r.count == 0) continue;
       const std::vector<std::uint32_t>& src = entries[std::size_t(part)];
-      std::copy_n(src.data() + sq.entry, std::size_t(r.count) * 4, out.texels.data() + next * 4);
-      next += std::size_t(r.count);
+      const std::size_t texels = std::size_t(2 * (r.counts[0] + r.counts[1]) + r.counts[2]);
+      std::copy_n(src.data() + sq.entry, texels * 4, out.texels.data() + next * 4);
+      next += texels;
     }
   }
   return out;
@@ -330,7 +330,7 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
   // The representative's shading at the centre per unit albedo and intensity.
   auto unitEstimate = [&](int tree, const Node& n) {
     const int leaf = leafOfSlot_[std::size_t(n.representative)];
-    const Node l = node(tree, leaf);
+    const Node& l = node(tree, leaf);
     float e;
     if (tree == 0) {
       e = std::max(glm::dot(g.axis, l.boxMin), 0.0f);
@@ -347,7 +347,7 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
   // A node's item; a child shares its parent's representative half of the time, and then
   // its shading at the centre.
   auto makeItem = [&](int tree, int i, const Item* parent) {
-    const Node n = node(tree, i);
+    const Node& n = node(tree, i);
     Item it{-1.0f, tree,       i, glm::vec3(0.0f), glm::vec3(0.0f), true, n.leaf, n.representative,
             0.0f,  n.intensity};
     if (n.representative < 0) return it;
@@ -439,6 +439,9 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
     }
     if (int(heap.size() + settled.size()) + 1 > rule.maxCut) {
       result.perPixel = true;  // the tile's cut is full: its pixels cut for themselves
+      const float have = rule.total ? maxOf(errorSum) : top;
+      const float want = kMargin * rule.error * maxOf(rule.total ? sum - errorSum : sum);
+      result.shortfall = want > 0.0f ? have / want : std::numeric_limits<float>::infinity();
       return result;
     }
     std::pop_heap(heap.begin(), heap.end());
@@ -465,13 +468,22 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
       }
     }
     std::vector<std::uint32_t>& e = byTree[it.tree];
-    e.push_back(std::uint32_t(it.representative));
+    if (it.tree == 2) {
+      e.push_back(std::uint32_t(it.representative));
+    } else {  // the representative itself: direction or position, and 1/range²
+      const Node& l = node(it.tree, leafOfSlot_[std::size_t(it.representative)]);
+      e.push_back(floatToBits(l.boxMin.x));
+      e.push_back(floatToBits(l.boxMin.y));
+      e.push_back(floatToBits(l.boxMin.z));
+      e.push_back(floatToBits(it.tree == 1 ? l.invRange2 : 0.0f));
+    }
     e.push_back(floatToBits(it.intensity.x));
     e.push_back(floatToBits(it.intensity.y));
     e.push_back(floatToBits(it.intensity.z));
+    if (it.tree != 2) e.push_back(0u);
   }
   for (int t = 0; t < 3; ++t) {
-    result.counts[t] = int(byTree[t].size() / 4);
+    result.counts[t] = int(byTree[t].size() / (t == 2 ? 4 : 8));
     result.count += result.counts[t];
     entries.insert(entries.end(), byTree[t].begin(), byTree[t].end());
   }

@@ -46,11 +46,16 @@ struct GBufferPixels {
 };
 
 // The frame's tile cuts as texels of 4 words (GL_RGBA32UI), one texture buffer:
-//   texel 2t      tile t (row-major, bottom-up): first entry texel, then the number of
-//                 entries of the directional, point and spot trees, in that order
+//   texel 2t      finest square t (row-major, bottom-up): first entry texel, then the
+//                 number of entries of the directional, point and spot trees, in that order
 //   texel 2t + 1  U (node rule) or B (total rule) per unit albedo, as float bits; flags
-//                 (kTilePerPixel: the tile's pixels cut for themselves)
-//   from texel 2·tiles: entries, (light texture slot, the node's intensity RGB float bits)
+//                 (kTilePerPixel: the square's pixels cut for themselves)
+//   from texel 2·tiles: each cut's entries, directional, point, spot, as float bits:
+//     directional, point: 2 texels, the representative's direction towards it (or
+//                         position) and 1/range² (0: none), then the node's intensity RGB, 0
+//     spot:               1 texel, the representative's light texture slot (an integer),
+//                         then the node's intensity RGB
+// Several squares may share one cut.
 struct TileCuts {
   int tileSize = 0, tilesX = 0, tilesY = 0;
   std::vector<std::uint32_t> texels;  // 4 words each
@@ -73,17 +78,24 @@ class TileCutter {
   TileCuts cut(const GBufferPixels& pixels, int tileSize, const CutRule& rule, int threads) const;
 
  private:
-  struct Node;
+  // A node as glsl/light_tree.glsl's fetchNode reads it, decoded once.
+  struct Node {
+    glm::vec3 boxMin, boxMax, intensity, axis{0.0f};
+    int representative;
+    float invRange2, w2, sinTheta = 0.0f;
+    bool leaf;
+  };
   struct Region;
   struct Result;
-  Node node(int tree, int i) const;
+  const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
+  static Node decode(const PackedTrees& packed, int tree, int i);
   Result cutTile(const Region& region, const CutRule& rule,
                  std::vector<std::uint32_t>& entries) const;
   static bool region(const GBufferPixels& px, int x0, int y0, int x1, int y1, Region& g,
                      bool& perPixel);
 
-  std::vector<std::uint32_t> words_;
-  int base_[3], leaves_[3];
+  std::vector<Node> nodes_[3];  // per tree
+  int leaves_[3];
   NodeColourCoder colour_;
   std::vector<int> leafOfSlot_;  // light texture slot → its leaf node in its tree
 };

@@ -93,12 +93,27 @@ Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tile
       glm::dvec3 exact(0.0), estimate(0.0);
       for (const Light& l : lights)
         exact += unitRadiance(l, p, n) * glm::dvec3(l.colour) * double(l.intensity);
-      const int count = int(head[1] + head[2] + head[3]);
-      for (int k = 0; k < count; ++k) {
-        const std::uint32_t* e = cuts.texels.data() + (std::size_t(head[0]) + k) * 4;
-        const Light& rep = lights[std::size_t(order.scene[e[0]])];
-        estimate += unitRadiance(rep, p, n) *
-                    glm::dvec3(bitsToFloat(e[1]), bitsToFloat(e[2]), bitsToFloat(e[3]));
+      const std::uint32_t* e = cuts.texels.data() + std::size_t(head[0]) * 4;
+      for (int tree = 0; tree < 3; ++tree) {
+        for (std::uint32_t k = 0; k < head[1 + tree]; ++k) {
+          Light rep;
+          const std::uint32_t* colour = e + 1;  // spot: slot, then R, G, B
+          if (tree == 2) {
+            rep = lights[std::size_t(order.scene[e[0]])];
+          } else {
+            colour = e + 4;  // R, G, B, 0 in the second texel
+            const glm::vec3 a(bitsToFloat(e[0]), bitsToFloat(e[1]), bitsToFloat(e[2]));
+            rep.type = tree == 0 ? LightType::Directional : LightType::Point;
+            rep.position = a;
+            rep.direction = -a;
+            if (bitsToFloat(e[3]) > 0.0f) rep.range = 1.0f / std::sqrt(bitsToFloat(e[3]));
+            e += 4;
+          }
+          estimate +=
+              unitRadiance(rep, p, n) *
+              glm::dvec3(bitsToFloat(colour[0]), bitsToFloat(colour[1]), bitsToFloat(colour[2]));
+          e += 4;
+        }
       }
       const glm::dvec3 bound(bitsToFloat(head[4]), bitsToFloat(head[5]), bitsToFloat(head[6]));
       ++c.sharedPixels;
