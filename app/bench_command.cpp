@@ -65,7 +65,7 @@ nlohmann::json jsonNumber(double v) {
 const char* kColumns =
     "case,layout,lights,method,mode,error,max_cut,width,height,repeats,render_ms,render_ms_min,"
     "render_ms_max,ratio_to_reference,ratio_to_floor,floor_ms,light_evals_per_px,"
-    "node_evals_per_px,avg_cut,largest_cut,pixels_at_max_cut,bake_ms,peak_rss_mb,"
+    "node_evals_per_px,avg_cut,largest_cut,pixels_at_max_cut,pixels_shared_cut,bake_ms,peak_rss_mb,"
     "pixels_compared,non_finite_pixels,max_rel_error,p99_rel_error,max_abs_error,rmse_8bit,"
     "psnr_8bit,share_off_gt_1_code,reference_row_share,failure";
 
@@ -86,10 +86,11 @@ std::string csvRow(const RunRecord& r, double floorMs) {
     << ',' << number(r.ratioToFloor) << ',' << number(floorMs) << ','
     << number(r.lightEvaluationsPerPixel) << ',' << number(r.nodeEvaluationsPerPixel) << ','
     << number(r.averageCut) << ',' << r.largestCut << ',' << r.pixelsAtMaxCut << ','
-    << number(r.bakeMs) << ',' << number(r.peakRssMb) << ',' << e.pixels << ',' << e.nonFinite
-    << ',' << number(e.maxRelative) << ',' << number(e.p99Relative) << ',' << number(e.maxAbsolute)
-    << ',' << number(e.rmse8) << ',' << number(e.psnr8) << ',' << number(e.offByMoreThanOneCode)
-    << ',' << number(1.0 / r.rowBandStride) << ",\"" << failure << '"';
+    << r.pixelsSharedCut << ',' << number(r.bakeMs) << ',' << number(r.peakRssMb) << ',' << e.pixels
+    << ',' << e.nonFinite << ',' << number(e.maxRelative) << ',' << number(e.p99Relative) << ','
+    << number(e.maxAbsolute) << ',' << number(e.rmse8) << ',' << number(e.psnr8) << ','
+    << number(e.offByMoreThanOneCode) << ',' << number(1.0 / r.rowBandStride) << ",\"" << failure
+    << '"';
   return s.str();
 }
 
@@ -133,6 +134,7 @@ nlohmann::json runJson(const RunRecord& r) {
     j["avg_cut"] = r.averageCut;
     j["largest_cut"] = r.largestCut;
     j["pixels_at_max_cut"] = r.pixelsAtMaxCut;
+    j["pixels_shared_cut"] = r.pixelsSharedCut;
   }
   return j;
 }
@@ -166,7 +168,8 @@ std::set<std::string> resumeFrom(const BenchArgs& a, nlohmann::json* json, std::
   } catch (const nlohmann::json::exception& e) {
     throw Error(a.json + ": cannot resume: " + e.what());
   }
-  for (const char* key : {"suite", "width", "height", "repeats", "reference_seconds", "max_cut"}) {
+  for (const char* key :
+       {"suite", "width", "height", "repeats", "reference_seconds", "max_cut", "cut_tile"}) {
     if (!before.contains(key) || before[key] != (*json)[key])
       throw Error(a.json + ": cannot resume: it was measured with another " + key +
                   "; remove it or run without --resume");
@@ -310,6 +313,7 @@ int runBench(const BenchArgs& a) {
       {"repeats", settings.repeats},
       {"reference_seconds", settings.referenceSeconds},
       {"max_cut", settings.maxCut},
+      {"cut_tile", LightcutsSettings{}.tileSize},
       {"backend", context->backend()},
       {"gl_renderer", context->renderer()},
       {"hardware_threads", std::thread::hardware_concurrency()},

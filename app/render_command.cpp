@@ -63,6 +63,8 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     stats["max_cut_size"] = c.maxCut;
     stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
     stats["pixels_shared_cut"] = c.pixelsSharedCut;
+    stats["shared_cut_squares"] = c.sharedSquares;
+    stats["per_pixel_squares"] = c.perPixelSquares;
     stats["light_evaluations_per_pixel"] = c.lightEvaluations;
     stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
     stats["covered_pixels"] = c.pixels;

@@ -133,6 +133,8 @@ CutStats LightcutsMethod::cutStats() const {
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   CutStats stats;
+  stats.sharedSquares = tileInfo_.sharedTiles;
+  stats.perPixelSquares = tileInfo_.perPixelTiles;
   double cut = 0.0, lightEvals = 0.0, nodeEvals = 0.0;
   stats.atMaxCut.assign(std::size_t(width_) * height_, 0);
   for (std::size_t i = 0; i < texels.size(); i += 4) {

@@ -40,8 +40,9 @@ struct CutStats {
   double averageCut = 0.0;
   int maxCut = 0;
   long long pixelsAtMaxCut = 0;
-  long long pixelsSharedCut = 0;       // pixels that took their tile's cut (render/tile_cuts.h)
-  double lightEvaluations = 0.0;       // per pixel
+  long long pixelsSharedCut = 0;  // pixels that took their tile's cut (render/tile_cuts.h)
+  int sharedSquares = 0, perPixelSquares = 0;  // squares with a shared cut, and left per pixel
+  double lightEvaluations = 0.0;               // per pixel
   double nodeEvaluations = 0.0;        // per pixel (error bounds or distance tests), with the
                                        // tile cuts' bounds on the CPU spread over the pixels
   std::vector<std::uint8_t> atMaxCut;  // per pixel, rows top-down: 1 where the cut hit the maximum

@@ -225,6 +225,7 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
       r.averageCut = stats.cuts.averageCut;
       r.largestCut = stats.cuts.maxCut;
       r.pixelsAtMaxCut = stats.cuts.pixelsAtMaxCut;
+      r.pixelsSharedCut = stats.cuts.pixelsSharedCut;
       r.peakRssMb = peakMemoryMb();
       if (ref.failure.empty()) r.errors = measureErrors(image, reference, rows);
       if (ref.renderMs > 0.0) r.ratioToReference = r.renderMs / ref.renderMs;

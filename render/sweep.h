@@ -68,9 +68,10 @@ struct RunRecord {
   double averageCut = 0;
   int largestCut = 0;
   long long pixelsAtMaxCut = 0;
-  double bakeMs = 0;     // light trees built and uploaded
-  double peakRssMb = 0;  // the process's peak resident memory while this variant ran
-  ImageErrors errors;    // against the reference, on the rows it lit
+  long long pixelsSharedCut = 0;  // pixels that took their screen square's cut
+  double bakeMs = 0;              // light trees built and uploaded
+  double peakRssMb = 0;           // the process's peak resident memory while this variant ran
+  ImageErrors errors;             // against the reference, on the rows it lit
   // The reference lit every rowBandStride-th band of kRowBand rows (1: all); its renderMs
   // is then its time scaled up by the share of rows lit, and errors cover those rows only.
   int rowBandStride = 1;

@@ -20,8 +20,8 @@ constexpr float kAbsoluteFloor = 1e-6f;        // glsl/lighting_lightcuts.frag
 // times this margin, so that most pixels, whose estimates differ from the centre's, pass
 // their own check.
 constexpr float kMargin = 0.5f;
-// A square whose cut filled up is split into quarters only if the cut's measure was within
-// this factor of the rule's target.
+// Under the total rule, a square whose cut filled up is split into quarters only if the
+// cut's summed bound was within this factor of the rule's target.
 constexpr float kSplitShortfall = 8.0f;
 
 float bitsToFloat(std::uint32_t w) {
@@ -253,8 +253,11 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
         Square sq{x0, y0, size, Result{}, mine.size()};
         if (!perPixel) sq.result = cutTile(g, rule, mine);
         sq.result.perPixel = sq.result.perPixel || perPixel;
-        // A cut that filled up far from its target would fill up in the quarters too.
-        if (sq.result.perPixel && size > fine && sq.result.shortfall < kSplitShortfall) {
+        // Under the total rule, a cut that filled up far from its target fills up in the
+        // quarters too (its bounds add up over the whole cut); under the node rule the
+        // culprit is mostly a light near one corner, which a quarter leaves out.
+        if (sq.result.perPixel && size > fine &&
+            (!rule.total || sq.result.shortfall < kSplitShortfall)) {
           // Smaller squares have tighter bounds: try the four quarters.
           mine.resize(sq.entry);
           const int h = size / 2;
