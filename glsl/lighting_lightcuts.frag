@@ -387,7 +387,7 @@ bool tileCut() {
   sum *= s.albedo / kPi;
   int count = counts.x + counts.y + counts.z;
   lightEvaluations += count;
-  iterationsLeft -= count / 2 + 3;
+  iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 3;  // loop iterations run
   float b = maxOf(bound);
   bool holds = uErrorMode == 0 ? b <= uError * maxOf(sum)
                                : b <= uError * maxOf(sum - bound) || b <= kAbsoluteFloor;
