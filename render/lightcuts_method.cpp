@@ -62,7 +62,7 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   const int tileSize = distance_ ? 1 : std::max(settings.tileSize, 1);
   if (tileSize > 1) {
     defines.push_back("TILE_CUTS");
-    cutTiles(gbuffer, settings);
+    cutTiles(gbuffer, settings, tileSize);
   } else {
     tileInfo_ = {};
   }
@@ -101,7 +101,8 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   glActiveTexture(GL_TEXTURE0);
 }
 
-void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& settings) const {
+void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& settings,
+                               int tileSize) const {
   const std::size_t plane = std::size_t(width_) * height_ * 4;
   readback_.resize(3 * plane);
   glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.geometryFramebuffer().id());
@@ -118,7 +119,7 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& 
   const CutRule rule{settings.error, settings.mode == ErrorMode::Total,
                      std::clamp(settings.maxCut, 1, kMaxCutLimit)};
   const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  tileInfo_ = tileCutter_->cut(pixels, std::max(settings.tileSize, 1), rule, threads);
+  tileInfo_ = tileCutter_->cut(pixels, tileSize, rule, threads);
   tileCuts_ = gl::uploadTextureBuffer(tileInfo_.texels.data(), tileInfo_.texels.size() / 4,
                                       GL_RGBA32UI, "tile cuts");
   tileInfo_.texels = {};

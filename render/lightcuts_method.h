@@ -72,8 +72,8 @@ class LightcutsMethod {
  private:
   const gl::Program& program(const std::vector<std::string>& defines) const;
 
-  // Finds the tile cuts on the CPU, from the G-buffer read back.
-  void cutTiles(const GBuffer& gbuffer, const LightcutsSettings& settings) const;
+  // Finds the cuts of tileSize × tileSize squares on the CPU, from the G-buffer read back.
+  void cutTiles(const GBuffer& gbuffer, const LightcutsSettings& settings, int tileSize) const;
 
   PackedTrees layout_;  // bases, leaf counts, colour coding (the words are dropped after upload)
   gl::TextureBuffer nodes_;

@@ -69,8 +69,7 @@ struct TileCutter::Region {
 };
 
 struct TileCutter::Result {
-  int count = 0;
-  int counts[3] = {0, 0, 0};  // per tree
+  int counts[3] = {0, 0, 0};  // entries per tree
   glm::vec3 check{0.0f};
   bool perPixel = false;
   long long bounds = 0;
@@ -226,7 +225,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   const int coarse = coarseX * ((px.height + tileSize - 1) / tileSize);
   threads = std::clamp(threads, 1, std::max(coarse, 1));
 
-  // A square of the quadtree that got a shared cut (or, at the finest size, none).
+  // A square of the quadtree that got a shared cut, or is left to per-pixel cuts.
   struct Square {
     int x0, y0, size;  // pixels
     Result result;
@@ -234,6 +233,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   };
   std::vector<std::vector<Square>> squares(static_cast<std::size_t>(threads));
   std::vector<std::vector<std::uint32_t>> entries(static_cast<std::size_t>(threads));
+  std::vector<long long> bounds(static_cast<std::size_t>(threads), 0);  // split squares' too
 
   auto work = [&](int part) {
     std::vector<std::uint32_t>& mine = entries[std::size_t(part)];
@@ -253,6 +253,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
         Square sq{x0, y0, size, Result{}, mine.size()};
         if (!perPixel) sq.result = cutTile(g, rule, mine);
         sq.result.perPixel = sq.result.perPixel || perPixel;
+        bounds[std::size_t(part)] += sq.result.bounds;
         // Under the total rule, a cut that filled up far from its target fills up in the
         // quarters too (its bounds add up over the whole cut); under the node rule the
         // culprit is mostly a light near one corner, which a quarter leaves out.
@@ -266,7 +267,6 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
               todo.push_back({x0 + (q & 1) * h, y0 + (q >> 1) * h, h});
             }
           }
-          done.push_back(Square{x0, y0, 0, sq.result, 0});  // only its bound count
           continue;
         }
         if (sq.result.perPixel) mine.resize(sq.entry);
@@ -288,10 +288,9 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   out.texels.assign((2 * tiles + entryTexels) * 4, 0u);
   std::size_t next = 2 * tiles;
   for (int part = 0; part < threads; ++part) {
+    out.boundEvaluations += bounds[std::size_t(part)];
     for (const Square& sq : squares[std::size_t(part)]) {
       const Result& r = sq.result;
-      out.boundEvaluations += r.bounds;
-      if (sq.size == 0) continue;  // split into quarters
       r.perPixel ? ++out.perPixelTiles : ++out.sharedTiles;
       std::uint32_t head[8] = {std::uint32_t(next),        std::uint32_t(r.counts[0]),
                                std::uint32_t(r.counts[1]), std::uint32_t(r.counts[2]),
@@ -302,7 +301,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
           std::copy_n(head, 8, out.texels.data() + (std::size_t(ty) * out.tilesX + tx) * 8);
         }
       }
-      if (r.perPixel || r.count == 0) continue;
+      if (r.perPixel) continue;
       const std::vector<std::uint32_t>& src = entries[std::size_t(part)];
       const std::size_t texels = std::size_t(2 * (r.counts[0] + r.counts[1]) + r.counts[2]);
       std::copy_n(src.data() + sq.entry, texels * 4, out.texels.data() + next * 4);
@@ -487,7 +486,6 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
   }
   for (int t = 0; t < 3; ++t) {
     result.counts[t] = int(byTree[t].size() / (t == 2 ? 4 : 8));
-    result.count += result.counts[t];
     entries.insert(entries.end(), byTree[t].begin(), byTree[t].end());
   }
   return result;
