@@ -296,6 +296,15 @@ void fallBackIfFull() {
   }
 }
 
+// The stopping rule (uErrorMode) for a cut with estimate `estimate`: node, `largest` (the
+// largest upper bound of its nodes) ≤ ε · max(estimate); total, with B = errorSum (the sum
+// of its nodes' upper − lower), max(B) ≤ ε · max(estimate − B) or ≤ the absolute floor.
+bool ruleHolds(float largest, vec3 errorSum, vec3 estimate) {
+  if (uErrorMode == 0) return largest <= uError * maxOf(estimate);
+  float b = maxOf(errorSum);
+  return b <= uError * maxOf(estimate - errorSum) || b <= kAbsoluteFloor;
+}
+
 // Thresholds fall by at most kStep per pass, so the cut grows from its largest bounds
 // down, much as the paper's priority order would grow it, and a pass that fills the cut
 // falls back to a balanced one.
@@ -316,7 +325,7 @@ void nodeRuleCut() {
       return;
     }
     // The rule is about the cut's own bounds, which may all be below the threshold.
-    if (largestMeasure <= uError * maxOf(estimateSum)) return;
+    if (ruleHolds(largestMeasure, errorSum, estimateSum)) return;
     keepPass();
   }
   atMax = true;  // out of loop iterations before the rule held
@@ -337,9 +346,7 @@ void totalRuleCut() {
       fallBackIfFull();
       return;
     }
-    b = maxOf(errorSum);
-    allowed = uError * maxOf(estimateSum - errorSum);
-    if (unboundedNodes == 0 && (b <= allowed || b <= kAbsoluteFloor)) return;
+    if (unboundedNodes == 0 && ruleHolds(0.0, errorSum, estimateSum)) return;
     keepPass();
   }
   atMax = true;  // out of loop iterations before the rule held
@@ -388,9 +395,7 @@ bool tileCut() {
   int count = counts.x + counts.y + counts.z;
   lightEvaluations += count;
   iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 3;  // loop iterations run
-  float b = maxOf(bound);
-  bool holds = uErrorMode == 0 ? b <= uError * maxOf(sum)
-                               : b <= uError * maxOf(sum - bound) || b <= kAbsoluteFloor;
+  bool holds = ruleHolds(maxOf(bound), bound, sum);
   if (holds) {
     estimateSum = sum;
     cutSize = count;
@@ -410,22 +415,22 @@ void main() {
   s.albedo = texelFetch(uAlbedo, px, 0).rgb;
   s.specular = texelFetch(uSpecular, px, 0).rgb;
   s.exponent = position.w;
+  bool tookTileCut = false;
 #ifdef DISTANCE
   cutPass(0.0, 2);
 #else
 #ifdef TILE_CUTS
-  if (tileCut()) {
-    oRadiance = vec4(estimateSum, 0.0);
-    oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations), 3.0);
-    return;
-  }
+  tookTileCut = tileCut();
 #endif
-  if (uErrorMode == 0) {
-    nodeRuleCut();
-  } else {
-    totalRuleCut();
+  if (!tookTileCut) {
+    if (uErrorMode == 0) {
+      nodeRuleCut();
+    } else {
+      totalRuleCut();
+    }
   }
 #endif
   oRadiance = vec4(estimateSum, 0.0);
-  oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations), atMax ? 2.0 : 1.0);
+  oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations),
+                   tookTileCut ? 3.0 : atMax ? 2.0 : 1.0);
 }
