@@ -4,6 +4,7 @@
 #include <cassert>
 #include <chrono>
 #include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/context.h"
@@ -103,6 +104,21 @@ void Renderer::geometryPass(const View& view, const FrameSettings& settings) {
   glBindVertexArray(0);
   glFrontFace(GL_CCW);
   glDisable(GL_CULL_FACE);
+}
+
+void warmUpGeometryPass() {
+  Scene scene;
+  Primitive triangle;
+  triangle.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+  triangle.normals.assign(3, {0, 0, 1});
+  triangle.texcoords = {{0, 0}, {1, 0}, {0.5f, 1}};
+  triangle.indices = {0, 1, 2};
+  scene.meshes.push_back({{triangle}});
+  scene.instances.push_back({0, glm::mat4(1.0f)});
+  Camera camera;
+  camera.world = glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 3));
+  const int size = 8;
+  Renderer(scene, {}, size, size, Method::Reference).render(makeView(camera, size, size), {});
 }
 
 void Renderer::replaceLights(const std::vector<Light>& lights) {
