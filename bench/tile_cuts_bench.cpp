@@ -46,8 +46,8 @@ const TileCutter& cutter(int lights) {
   static std::map<int, std::unique_ptr<TileCutter>> cutters;
   auto& c = cutters[lights];
   if (!c) {
-    c = std::make_unique<TileCutter>(
-        packLightTrees(buildLightTrees(layoutLights(LightLayout::Uniform, lights, 7))));
+    const std::vector<Light> all = layoutLights(LightLayout::Uniform, lights, 7);
+    c = std::make_unique<TileCutter>(packLightTrees(buildLightTrees(all)), all);
   }
   return *c;
 }

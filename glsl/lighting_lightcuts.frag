@@ -361,16 +361,29 @@ uniform usamplerBuffer uTileCuts;
 uniform int uTileSize;
 uniform int uTilesX;
 
-// Entries of the directional and point trees hold their representative's direction or
-// position (and 1/range²) themselves, so the loop reads the tile's entries in order instead
-// of lights scattered over the light texture; spot entries name the light (the cone needs
-// the whole light). Pixels on a shared cut are Lambert only (render/tile_cuts.h), so the sum
+// Entries hold their representative's direction or position (and 1/range², and a spot's
+// cone) themselves, so the loop reads the tile's entries in order instead of lights
+// scattered over the light texture. Pixels on a shared cut are Lambert only (render/tile_cuts.h), so the sum
 // is of irradiance, times albedo/π at the end. One line each: GLSL 3.30 has no line
 // continuation. Two entries per iteration, as the reference path sums four lights.
 #define EMBEDDED_SUM(first, count, TERM) for (k = first; k + 4 <= first + 2 * count; k += 4) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); vec4 c0 = uintBitsToFloat(texelFetch(uTileCuts, k + 1)); vec4 a1 = uintBitsToFloat(texelFetch(uTileCuts, k + 2)); vec4 c1 = uintBitsToFloat(texelFetch(uTileCuts, k + 3)); sum += TERM(a0) * c0.rgb + TERM(a1) * c1.rgb; } if (k < first + 2 * count) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); sum += TERM(a0) * uintBitsToFloat(texelFetch(uTileCuts, k + 1)).rgb; }
 #define DIRECTIONAL_T(a) max(dot(s.normal, a.xyz), 0.0)
 #define POINT_T(a) pointFalloff(a, s.position, s.normal, unusedL)
 vec3 unusedL;
+
+vec3 tileTexel(int k) { return uintBitsToFloat(texelFetch(uTileCuts, k).xyz); }
+
+// The far field's irradiance at this pixel, per channel n · (F + J (x − c)), from its
+// texels at k (render/far_field.h).
+vec3 farField(int k) {
+  vec3 d = s.position - tileTexel(k);
+  vec3 e;
+  for (int c = 0; c < 3; ++c) {
+    mat3 j = mat3(tileTexel(k + 4 + 3 * c), tileTexel(k + 5 + 3 * c), tileTexel(k + 6 + 3 * c));
+    e[c] = dot(s.normal, tileTexel(k + 1 + c) + j * d);
+  }
+  return e;
+}
 
 bool tileCut() {
   ivec2 tile = ivec2(gl_FragCoord.xy) / uTileSize;
@@ -380,25 +393,33 @@ bool tileCut() {
   if ((check.w & 1u) != 0u) return false;
   vec3 bound = s.albedo * uintBitsToFloat(check.xyz);
   ivec3 counts = ivec3(head.yzw);
+  int folded = int(check.w >> 8u);  // kTileFoldedShift
   vec3 sum = vec3(0.0);
   int k;
   int first = int(head.x);
+  if (folded > 0) {
+    sum = farField(first);
+    first += 13;  // kFarFieldTexels
+  }
   EMBEDDED_SUM(first, counts.x, DIRECTIONAL_T);
   first += 2 * counts.x;
   EMBEDDED_SUM(first, counts.y, POINT_T);
   first += 2 * counts.y;
-  for (k = first; k < first + counts.z; ++k) {
-    uvec4 e = texelFetch(uTileCuts, k);
-    sum += unitIrradiance(2, int(e.x), s.position, s.normal, unusedL) * uintBitsToFloat(e.yzw);
+  for (k = first; k < first + 3 * counts.z; k += 3) {
+    vec4 a = uintBitsToFloat(texelFetch(uTileCuts, k));
+    vec4 b = uintBitsToFloat(texelFetch(uTileCuts, k + 1));
+    vec4 c = uintBitsToFloat(texelFetch(uTileCuts, k + 2));
+    vec3 l;
+    sum += c.rgb * (pointFalloff(a, s.position, s.normal, l) * spotCone(b, c.w, l));
   }
   sum *= s.albedo / kPi;
   int count = counts.x + counts.y + counts.z;
-  lightEvaluations += count;
-  iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 3;  // loop iterations run
+  lightEvaluations += count + min(folded, 1);  // the far field counts as one
+  iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;  // loop iterations run
   bool holds = ruleHolds(maxOf(bound), bound, sum);
   if (holds) {
     estimateSum = sum;
-    cutSize = count;
+    cutSize = count + folded;
   }
   return holds;
 }

@@ -13,15 +13,16 @@ using namespace gl::api;
 
 LightcutsMethod::LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
                                  const TreeOptions& options, bool distance)
-    : LightcutsMethod(packLightTrees(buildLightTrees(lights, options), options.nodeColour), gbuffer,
-                      distance) {}
+    : LightcutsMethod(packLightTrees(buildLightTrees(lights, options), options.nodeColour), lights,
+                      gbuffer, distance) {}
 
-LightcutsMethod::LightcutsMethod(PackedTrees packed, const GBuffer& gbuffer, bool distance)
+LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& lights,
+                                 const GBuffer& gbuffer, bool distance)
     : layout_(std::move(packed)),
       distance_(distance),
       width_(gbuffer.width()),
       height_(gbuffer.height()) {
-  if (!distance) tileCutter_ = std::make_unique<TileCutter>(layout_);
+  if (!distance) tileCutter_ = std::make_unique<TileCutter>(layout_, lights);
   std::vector<std::uint32_t>& words = layout_.words;
   const std::size_t nodeWords = words.size();
   if (words.empty()) words.assign(4, 0u);  // no lights: keep the sampler complete

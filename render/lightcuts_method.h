@@ -55,8 +55,9 @@ class LightcutsMethod {
   // `distance`: cut by the distance criterion (lightcuts-distance) instead of error bounds.
   LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
                   const TreeOptions& options, bool distance);
-  // Uploads trees built and packed before (a baked scene): nothing is rebuilt.
-  LightcutsMethod(PackedTrees packed, const GBuffer& gbuffer, bool distance);
+  // Uploads trees built and packed before (a baked scene) for `lights`: nothing is rebuilt.
+  LightcutsMethod(PackedTrees packed, const std::vector<Light>& lights, const GBuffer& gbuffer,
+                  bool distance);
 
   // Adds the lights' contribution to the radiance target of `gbuffer` and writes the cut
   // statistics target.

@@ -48,7 +48,7 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
     glFinish();
     const auto start = std::chrono::steady_clock::now();
     const bool distance = method == Method::LightcutsDistance;
-    lightcuts_ = prebuilt ? std::make_unique<LightcutsMethod>(*prebuilt, gbuffer_, distance)
+    lightcuts_ = prebuilt ? std::make_unique<LightcutsMethod>(*prebuilt, lights, gbuffer_, distance)
                           : std::make_unique<LightcutsMethod>(lights, gbuffer_, trees, distance);
     glFinish();
     bakeMs_ =

@@ -7,9 +7,15 @@
 #include <limits>
 #include <thread>
 
+#include "bake/light_pack.h"
+#include "bake/light_texture_layout.h"
 #include "bake/light_tree_layout.h"
+#include "render/far_field.h"
+#include "render/region_bounds.h"
 
 namespace manylight {
+
+using namespace region_bounds;
 
 namespace {
 
@@ -23,6 +29,9 @@ constexpr float kMargin = 0.5f;
 // Under the total rule, a square whose cut filled up is split into quarters only if the
 // cut's summed bound was within this factor of the rule's target.
 constexpr float kSplitShortfall = 8.0f;
+// Under the total rule, entries fold into the far field while the summed bound stays within
+// this share of the rule's target (the cut itself stopped at kMargin).
+constexpr float kFoldMargin = 0.75f;
 
 float bitsToFloat(std::uint32_t w) {
   float f;
@@ -38,28 +47,6 @@ std::uint32_t floatToBits(float f) {
 
 float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
-float window(float d2, float invRange2) {
-  const float x = d2 * invRange2;
-  const float w = std::clamp(1.0f - x * x, 0.0f, 1.0f);
-  return w * w;
-}
-
-// cos(max(θ − γ, 0)) for θ = acos(c), γ the spread (cos cg, sin sg): the largest cosine to
-// any normal of the tile when c bounds the cosine to their mean direction.
-float widenUp(float c, float cg, float sg) {
-  if (cg <= 0.0f) return 1.0f;  // γ ≥ π/2: some normal may face the light head on
-  c = std::clamp(c, 0.0f, 1.0f);
-  const float s = std::sqrt(1.0f - c * c);
-  return s <= sg ? 1.0f : c * cg + s * sg;
-}
-
-// cos(min(θ + γ, π/2))⁺ for θ = acos(c): the smallest cosine to any normal of the tile.
-float widenDown(float c, float cg, float sg) {
-  if (cg <= 0.0f) return 0.0f;
-  c = std::clamp(c, 0.0f, 1.0f);
-  return std::max(c * cg - std::sqrt(1.0f - c * c) * sg, 0.0f);
-}
-
 }  // namespace
 
 // The tile's shading points: their box, and a cone around `axis` holding their normals.
@@ -69,25 +56,33 @@ struct TileCutter::Region {
 };
 
 struct TileCutter::Result {
-  int counts[3] = {0, 0, 0};  // entries per tree
+  int counts[3] = {0, 0, 0};  // entries per tree, besides the far field
+  int folded = 0;             // entries in the far field
   glm::vec3 check{0.0f};
   bool perPixel = false;
   long long bounds = 0;
   float shortfall = 0.0f;  // a full cut: how far its measure was above the rule's target
 };
 
-TileCutter::TileCutter(const PackedTrees& packed) : colour_(packed.colour) {
-  int lights = 0;
+TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& lights)
+    : colour_(packed.colour) {
+  const PackedLights texels = packLights(lights);  // the cone as the shader reads it
+  spotStart_ = texels.spotStart;
+  for (std::size_t slot = std::size_t(texels.spotStart); slot < lights.size(); ++slot) {
+    const float* t = &texels.texels[slot * layout::kFloatsPerLight];
+    spotCones_.push_back({{t[4], t[5], t[6]}, t[7], t[11]});
+  }
+  int slots = 0;
   for (int t = 0; t < 3; ++t) {
     leaves_[t] = packed.leaves[t];
     const int count = leaves_[t] > 0 ? 2 * leaves_[t] - 1 : 0;
     nodes_[t].reserve(std::size_t(count));
     for (int i = 0; i < count; ++i) nodes_[t].push_back(decode(packed, t, i));
     for (int i = leaves_[t] - 1; i < 2 * leaves_[t] - 1; ++i) {
-      lights = std::max(lights, node(t, i).representative + 1);
+      slots = std::max(slots, node(t, i).representative + 1);
     }
   }
-  leafOfSlot_.assign(std::size_t(lights), -1);
+  leafOfSlot_.assign(std::size_t(slots), -1);
   for (int t = 0; t < 3; ++t) {
     for (int i = leaves_[t] - 1; i < 2 * leaves_[t] - 1; ++i) {
       const int slot = node(t, i).representative;
@@ -114,66 +109,6 @@ TileCutter::Node TileCutter::decode(const PackedTrees& packed, int tree, int i) 
   }
   return n;
 }
-
-namespace {
-
-// Upper and lower bounds of a node's contribution per unit albedo over a region, as
-// nodeBounds in glsl/lighting_lightcuts.frag does for a point, with the box D of all
-// vectors from a shading point to a light of the node (directional trees: the node's
-// directions). Returns false when unbounded.
-struct Bounds {
-  glm::vec3 upper{0.0f}, lower{0.0f};
-};
-
-float cosineUpper(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax, float dist) {
-  const glm::vec3 m = glm::max(u * dMin, u * dMax);
-  const float num = m.x + m.y + m.z;
-  if (num <= 0.0f) return 0.0f;
-  return dist > 0.0f ? std::min(num / dist, 1.0f) : 1.0f;
-}
-
-float cosineLower(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax, float dist) {
-  const glm::vec3 m = glm::min(u * dMin, u * dMax);
-  const float num = m.x + m.y + m.z;
-  return num > 0.0f ? std::min(num / dist, 1.0f) : 0.0f;
-}
-
-glm::vec2 sphereCosines(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax) {
-  const glm::vec3 c = 0.5f * (dMin + dMax);
-  const float r2 = 0.25f * glm::dot(dMax - dMin, dMax - dMin);
-  const float d2 = glm::dot(c, c);
-  if (d2 <= r2) return {1.0f, 0.0f};
-  const float cosT = glm::dot(u, c) / std::sqrt(d2);
-  const float sinT = std::sqrt(std::max(1.0f - cosT * cosT, 0.0f));
-  const float sinA = std::sqrt(r2 / d2);
-  const float cosA = std::sqrt(1.0f - sinA * sinA);
-  const float upper = cosT >= cosA ? 1.0f : cosT * cosA + sinT * sinA;
-  const float lower = std::max(cosT * cosA - sinT * sinA, 0.0f);
-  return {upper, lower};
-}
-
-}  // namespace
-
-namespace {
-
-// Whether some light of a spot node may shine on some point of the region: as spotMayReach
-// in the shader, with the region's bounding sphere added to the node's.
-bool spotMayReach(glm::vec3 boxMin, glm::vec3 boxMax, glm::vec3 axis, float cosT, float sinT,
-                  glm::vec3 pMin, glm::vec3 pMax) {
-  const glm::vec3 c = 0.5f * (boxMin + boxMax);
-  const float r = 0.5f * glm::length(boxMax - boxMin) + 0.5f * glm::length(pMax - pMin);
-  const glm::vec3 toP = 0.5f * (pMin + pMax) - c;
-  const float d = glm::length(toP);
-  if (d <= r) return true;
-  const float sinA = r / d;
-  const float cosA = std::sqrt(std::max(1.0f - sinA * sinA, 0.0f));
-  const float sinSum = sinT * cosA + cosT * sinA;
-  if (sinSum < 0.0f) return true;
-  const float cosSum = cosT * cosA - sinT * sinA;
-  return glm::dot(axis, toP) / d >= cosSum;
-}
-
-}  // namespace
 
 // The region of the pixels [x0, x1) × [y0, y1); false when no pixel is covered. `perPixel`:
 // some pixel is specular (its bounds are not per unit albedo), or the normals cancel out.
@@ -292,10 +227,15 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     for (const Square& sq : squares[std::size_t(part)]) {
       const Result& r = sq.result;
       r.perPixel ? ++out.perPixelTiles : ++out.sharedTiles;
-      std::uint32_t head[8] = {std::uint32_t(next),        std::uint32_t(r.counts[0]),
-                               std::uint32_t(r.counts[1]), std::uint32_t(r.counts[2]),
-                               floatToBits(r.check.x),     floatToBits(r.check.y),
-                               floatToBits(r.check.z),     r.perPixel ? kTilePerPixel : 0u};
+      std::uint32_t head[8] = {std::uint32_t(next),
+                               std::uint32_t(r.counts[0]),
+                               std::uint32_t(r.counts[1]),
+                               std::uint32_t(r.counts[2]),
+                               floatToBits(r.check.x),
+                               floatToBits(r.check.y),
+                               floatToBits(r.check.z),
+                               (r.perPixel ? kTilePerPixel : 0u) | std::uint32_t(r.folded)
+                                                                       << kTileFoldedShift};
       for (int ty = sq.y0 / fine; ty < std::min((sq.y0 + sq.size) / fine, out.tilesY); ++ty) {
         for (int tx = sq.x0 / fine; tx < std::min((sq.x0 + sq.size) / fine, out.tilesX); ++tx) {
           std::copy_n(head, 8, out.texels.data() + (std::size_t(ty) * out.tilesX + tx) * 8);
@@ -303,7 +243,8 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
       }
       if (r.perPixel) continue;
       const std::vector<std::uint32_t>& src = entries[std::size_t(part)];
-      const std::size_t texels = std::size_t(2 * (r.counts[0] + r.counts[1]) + r.counts[2]);
+      const std::size_t texels = std::size_t(2 * (r.counts[0] + r.counts[1]) + 3 * r.counts[2] +
+                                             (r.folded > 0 ? kFarFieldTexels : 0));
       std::copy_n(src.data() + sq.entry, texels * 4, out.texels.data() + next * 4);
       next += texels;
     }
@@ -456,36 +397,100 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
   }
   for (const auto& [measure, k] : heap) settled.push_back(k);
 
-  // The cut's entries, tree by tree, and the bounds every pixel checks against.
+  // The far field: directional and point entries lighting every pixel of the tile from in
+  // front, folded into one linear function while the rule keeps a margin (far_field.h).
+  // Under the node rule an entry folds when its bound plus T stays within the margin the
+  // cut stopped at; under the total rule the smallest T fold first while the summed bound
+  // stays within kFoldMargin of the rule.
+  const float h2 = 0.25f * glm::dot(g.pMax - g.pMin, g.pMax - g.pMin);
+  thread_local std::vector<std::pair<float, int>> foldable;  // (max T, item)
+  thread_local std::vector<glm::vec3> linearisation;         // T per item
+  foldable.clear();
+  linearisation.assign(items.size(), glm::vec3(0.0f));
+  for (const int k : settled) {
+    const Item& it = items[std::size_t(k)];
+    if (it.dark) continue;
+    if (!it.leaf)
+      result.check = rule.total ? result.check + it.error : glm::max(result.check, it.error);
+    const Node& l = node(it.tree, leafOfSlot_[std::size_t(it.representative)]);
+    if (it.tree == 2) {
+      const SpotCone& cone = spotCone(it.representative);
+      if (!spotFullOver(cone.axis, cone.scale, cone.offset, l.boxMin, g.pMin, g.pMax)) continue;
+    }
+    float t = 0.0f;
+    if (it.tree == 0) {
+      if (widenDown(glm::dot(g.axis, l.boxMin), g.cosSpread, g.sinSpread) <= 0.0f) continue;
+    } else {
+      const glm::vec3 dMin = l.boxMin - g.pMax, dMax = l.boxMin - g.pMin;
+      const glm::vec3 nearest = glm::clamp(glm::vec3(0.0f), dMin, dMax);
+      const float d2Min = glm::dot(nearest, nearest);
+      if (d2Min <= 0.0f) continue;
+      const glm::vec3 farthest = glm::max(glm::abs(dMin), glm::abs(dMax));
+      const float cosLow = widenDown(
+          std::max(cosineLower(g.axis, dMin, dMax, std::sqrt(glm::dot(farthest, farthest))),
+                   sphereCosines(g.axis, dMin, dMax).y),
+          g.cosSpread, g.sinSpread);
+      if (cosLow <= 0.0f) continue;
+      t = float(linearisationBound(d2Min, l.invRange2, h2));
+    }
+    linearisation[std::size_t(k)] = it.intensity * t;
+    foldable.emplace_back(maxOf(it.intensity) * t, k);
+  }
+  thread_local std::vector<bool> folded;
+  folded.assign(items.size(), false);
+  if (rule.total) {
+    std::sort(foldable.begin(), foldable.end());
+    for (const auto& [t, k] : foldable) {
+      const glm::vec3 b = result.check + linearisation[std::size_t(k)];
+      if (maxOf(b) > kFoldMargin * rule.error * maxOf(sum - b)) break;
+      result.check = b;
+      folded[std::size_t(k)] = true;
+    }
+  } else {
+    for (const auto& [t, k] : foldable) {
+      const glm::vec3 b = items[std::size_t(k)].error + linearisation[std::size_t(k)];
+      if (maxOf(b) > kMargin * rule.error * maxOf(sum)) continue;
+      result.check = glm::max(result.check, b);
+      folded[std::size_t(k)] = true;
+    }
+  }
+
+  // The cut's entries, tree by tree (the far field first), and the bounds every pixel checks
+  // against.
+  FarField far(centre);
   thread_local std::vector<std::uint32_t> byTree[3];
   for (auto& e : byTree) e.clear();
   for (const int k : settled) {
     const Item& it = items[std::size_t(k)];
     if (it.dark) continue;  // contributes nothing anywhere in the tile
-    if (!it.leaf) {
-      if (rule.total) {
-        result.check += it.error;
-      } else {
-        result.check = glm::max(result.check, it.error);
+    const Node& l = node(it.tree, leafOfSlot_[std::size_t(it.representative)]);
+    if (folded[std::size_t(k)]) {
+      if (it.tree == 0) {
+        far.addDirectional(l.boxMin, it.intensity);
+      } else {  // a spot folds only where its cone lets all light through: a point light there
+        far.addPoint(l.boxMin, l.invRange2, it.intensity);
       }
+      continue;
     }
+    // The representative itself: direction or position, and 1/range²; a spot's cone; the
+    // node's intensity.
     std::vector<std::uint32_t>& e = byTree[it.tree];
+    for (const float w : {l.boxMin.x, l.boxMin.y, l.boxMin.z, it.tree == 0 ? 0.0f : l.invRange2})
+      e.push_back(floatToBits(w));
+    float coneOffset = 0.0f;
     if (it.tree == 2) {
-      e.push_back(std::uint32_t(it.representative));
-    } else {  // the representative itself: direction or position, and 1/range²
-      const Node& l = node(it.tree, leafOfSlot_[std::size_t(it.representative)]);
-      e.push_back(floatToBits(l.boxMin.x));
-      e.push_back(floatToBits(l.boxMin.y));
-      e.push_back(floatToBits(l.boxMin.z));
-      e.push_back(floatToBits(it.tree == 1 ? l.invRange2 : 0.0f));
+      const SpotCone& cone = spotCone(it.representative);
+      for (const float w : {cone.axis.x, cone.axis.y, cone.axis.z, cone.scale})
+        e.push_back(floatToBits(w));
+      coneOffset = cone.offset;
     }
-    e.push_back(floatToBits(it.intensity.x));
-    e.push_back(floatToBits(it.intensity.y));
-    e.push_back(floatToBits(it.intensity.z));
-    if (it.tree != 2) e.push_back(0u);
+    for (const float w : {it.intensity.x, it.intensity.y, it.intensity.z, coneOffset})
+      e.push_back(floatToBits(w));
   }
+  result.folded = far.count();
+  if (!far.empty()) far.write(entries);
   for (int t = 0; t < 3; ++t) {
-    result.counts[t] = int(byTree[t].size() / (t == 2 ? 4 : 8));
+    result.counts[t] = int(byTree[t].size() / (t == 2 ? 12 : 8));
     entries.insert(entries.end(), byTree[t].begin(), byTree[t].end());
   }
   return result;

@@ -12,7 +12,9 @@
 // against the estimate at the square's centre with a margin (kMargin in the .cpp). A square
 // whose cut would exceed the maximum is split into quarters, down to kFinestTile. Nodes
 // that cannot reach any point of the square are left out. Each pixel then only sums the
-// cut's representatives (the same loop for every pixel of the square) and checks the rule
+// cut's representatives (the same loop for every pixel of the square; the entries that
+// light the whole square from in front folded into one linear far field, far_field.h,
+// with their linearisation error added to their bounds) and checks the rule
 // for itself with the square's bounds, which hold at every one of its pixels:
 //   node rule:  max(albedo ∘ U) ≤ ε · max(estimate), U the channel-wise largest upper
 //               bound over the cut's internal nodes;
@@ -27,6 +29,7 @@
 #include <vector>
 
 #include "bake/light_tree_pack.h"
+#include "scene/scene.h"
 
 namespace manylight {
 
@@ -49,12 +52,15 @@ struct GBufferPixels {
 //   texel 2t      finest square t (row-major, bottom-up): first entry texel, then the
 //                 number of entries of the directional, point and spot trees, in that order
 //   texel 2t + 1  U (node rule) or B (total rule) per unit albedo, as float bits; flags
-//                 (kTilePerPixel: the square's pixels cut for themselves)
-//   from texel 2·tiles: each cut's entries, directional, point, spot, as float bits:
+//                 (kTilePerPixel: the square's pixels cut for themselves) and, from bit
+//                 kTileFoldedShift, how many entries the far field holds
+//   from texel 2·tiles: each cut's far field (render/far_field.h: kFarFieldTexels texels,
+//     when it holds any entry), then its entries, directional, point, spot, as float bits:
 //     directional, point: 2 texels, the representative's direction towards it (or
 //                         position) and 1/range² (0: none), then the node's intensity RGB, 0
-//     spot:               1 texel, the representative's light texture slot (an integer),
-//                         then the node's intensity RGB
+//     spot:               3 texels: the representative's position and 1/range², its
+//                         axis and cone scale, the node's intensity RGB and the cone
+//                         offset (as the light texture holds them)
 // Several squares may share one cut.
 struct TileCuts {
   int tileSize = 0, tilesX = 0, tilesY = 0;
@@ -65,14 +71,15 @@ struct TileCuts {
 };
 
 inline constexpr std::uint32_t kTilePerPixel = 1u;
+inline constexpr int kTileFoldedShift = 8;
 // A square whose cut would exceed the maximum is split into quarters, down to this size;
 // the texels hold one header per square of this size (several may share a cut).
 inline constexpr int kFinestTile = 4;
 
 class TileCutter {
  public:
-  // Keeps a copy of the packed trees' words (the shader's node texture).
-  explicit TileCutter(const PackedTrees& packed);
+  // Decodes the nodes of `packed`, the trees of `lights`.
+  TileCutter(const PackedTrees& packed, const std::vector<Light>& lights);
 
   // Cuts for every tile of the frame, on `threads` threads.
   TileCuts cut(const GBufferPixels& pixels, int tileSize, const CutRule& rule, int threads) const;
@@ -84,6 +91,12 @@ class TileCutter {
     int representative;
     float invRange2, w2, sinTheta = 0.0f;
     bool leaf;
+  };
+  // A spot's cone as the light texture holds it: smoothstep(clamp(cos · scale + offset)),
+  // cos to the axis (the way it shines).
+  struct SpotCone {
+    glm::vec3 axis;
+    float scale, offset;
   };
   struct Region;
   struct Result;
@@ -98,6 +111,9 @@ class TileCutter {
   int leaves_[3];
   NodeColourCoder colour_;
   std::vector<int> leafOfSlot_;  // light texture slot → its leaf node in its tree
+  const SpotCone& spotCone(int slot) const { return spotCones_[std::size_t(slot - spotStart_)]; }
+  std::vector<SpotCone> spotCones_;  // per spot slot, from spotStart_
+  int spotStart_ = 0;
 };
 
 }  // namespace manylight

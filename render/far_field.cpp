@@ -1,0 +1,61 @@
+#include "render/far_field.h"
+
+#include <cstring>
+
+namespace manylight {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::uint32_t floatToBits(float f) {
+  std::uint32_t w;
+  std::memcpy(&w, &f, 4);
+  return w;
+}
+
+void writeTexel(std::vector<std::uint32_t>& words, glm::dvec3 v) {
+  for (int i = 0; i < 3; ++i) words.push_back(floatToBits(float(v[i])));
+  words.push_back(0u);
+}
+
+}  // namespace
+
+double linearisationBound(double rMin2, double invRange2, double h2) {
+  const double a = invRange2;
+  const double secondDerivative = 6.0 / (rMin2 * rMin2) + 15.4 * a / rMin2 + 32.0 * a * a;
+  return 0.5 * secondDerivative * h2 / kPi;
+}
+
+void FarField::addDirectional(glm::vec3 towards, glm::vec3 intensity) {
+  for (int c = 0; c < 3; ++c) f_[std::size_t(c)] += double(intensity[c]) * glm::dvec3(towards);
+  ++count_;
+}
+
+void FarField::addPoint(glm::vec3 position, float invRange2, glm::vec3 intensity) {
+  // f(c) = W(s) v / r³ and Df(c) = −(2 W'(s) v vᵀ + W (I − 3 v vᵀ / r²)) / r³, v = p − c,
+  // s = r² (far_field.h); W = (1 − x²)² with x = a·s, W' = −4a·x(1 − x²), both 0 for x ≥ 1.
+  const glm::dvec3 v = glm::dvec3(position) - centre_;
+  const double s = glm::dot(v, v);
+  const double r3 = s * std::sqrt(s);
+  const double a = invRange2, x = a * s;
+  const double w = x < 1.0 ? (1.0 - x * x) * (1.0 - x * x) : 0.0;
+  const double dw = x < 1.0 ? -4.0 * a * x * (1.0 - x * x) : 0.0;
+  const glm::dmat3 vv = glm::outerProduct(v, v);
+  const glm::dvec3 value = w * v / r3;
+  const glm::dmat3 jacobian = -(2.0 * dw * vv + w * (glm::dmat3(1.0) - 3.0 * vv / s)) / r3;
+  for (int c = 0; c < 3; ++c) {
+    f_[std::size_t(c)] += double(intensity[c]) * value;
+    j_[std::size_t(c)] += double(intensity[c]) * jacobian;
+  }
+  ++count_;
+}
+
+void FarField::write(std::vector<std::uint32_t>& words) const {
+  writeTexel(words, centre_);
+  for (const glm::dvec3& f : f_) writeTexel(words, f);
+  for (const glm::dmat3& j : j_) {
+    for (int column = 0; column < 3; ++column) writeTexel(words, j[column]);
+  }
+}
+
+}  // namespace manylight

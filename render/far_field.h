@@ -1,0 +1,59 @@
+#pragma once
+// The far field of a shared tile cut (render/tile_cuts.h): the cut's directional and point
+// entries that light every pixel of the tile from in front, folded into one function of
+// the pixel that is linear in its position and normal, so a pixel evaluates them all at
+// the cost of about six entries.
+//
+// A Lambert pixel at x with normal n gets from a point entry of intensity I (RGB) at p
+//   I · max(n·(p − x), 0) · W(|p − x|²) / |p − x|³,   W the range window (glsl/shading.glsl).
+// Where n·(p − x) > 0 for every pixel of the tile the clamp never acts, and the sum over
+// such entries is n · Σ I f(x) with f(x) = W(|p − x|²)(p − x)/|p − x|³. The far field keeps
+// that sum to first order about the tile's centre c: per channel, F = Σ I f(c) and the
+// Jacobian J = Σ I Df(c), and a pixel takes n · (F + J (x − c)). A directional entry adds
+// I · l to F exactly (its term n·l does not depend on x).
+//
+// The first-order remainder is at most ½ sup‖D²f‖ |x − c|² along the segment from c to x,
+// inside the tile's box. With r the distance from p to the box and a = 1/range² (0: none):
+//   ‖D²f‖ ≤ 6/r⁴ + 15.4·a/r² + 32·a²
+// (the 6/r⁴ of p/|p|³'s second derivative, the third of 1/r; the rest from |W'| ≤ 1.54·a,
+// |W''| ≤ 8·a², and a ≤ 1/r² wherever W is not 0). So the entry's error grows by
+//   T = I · ½ (6/r⁴ + 15.4·a/r² + 32·a²) · h² / π   per unit albedo,
+// h the half-diagonal of the tile's box, and the tile's bounds (U, B) take T in with the
+// node's own bound: the total rule's guarantee is kept.
+//
+// Texels (4 words, float bits), kFarFieldTexels of them: c; F per channel R, G, B; then
+// per channel the three columns of J.
+#include <array>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace manylight {
+
+inline constexpr int kFarFieldTexels = 13;
+
+// The per-unit-albedo linearisation bound T per unit intensity (multiply by I), for a point
+// light whose nearest distance² to the tile's box is rMin2, over a box of half-diagonal²
+// h2.
+double linearisationBound(double rMin2, double invRange2, double h2);
+
+class FarField {
+ public:
+  explicit FarField(glm::vec3 centre) : centre_(centre) {}
+  // A directional entry: unit vector towards the light, intensity (lux, RGB).
+  void addDirectional(glm::vec3 towards, glm::vec3 intensity);
+  // A point entry at `position` with 1/range² (0: none) and intensity (candela, RGB).
+  void addPoint(glm::vec3 position, float invRange2, glm::vec3 intensity);
+  bool empty() const { return count_ == 0; }
+  int count() const { return count_; }
+  // Appends the kFarFieldTexels texels.
+  void write(std::vector<std::uint32_t>& words) const;
+
+ private:
+  glm::dvec3 centre_;
+  std::array<glm::dvec3, 3> f_{};  // per channel
+  std::array<glm::dmat3, 3> j_{glm::dmat3(0.0), glm::dmat3(0.0), glm::dmat3(0.0)};
+  int count_ = 0;
+};
+
+}  // namespace manylight
