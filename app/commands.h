@@ -15,6 +15,7 @@
 #include "render/colour_calibration.h"
 #include "render/image.h"
 #include "render/lightcuts_method.h"
+#include "render/renderer.h"
 #include "scene/gltf_loader.h"
 
 namespace manylight::cli {
@@ -65,14 +66,26 @@ void addSceneOptions(CLI::App* app, SceneArgs& a);
 // extension) with its trees. Throws Error.
 BakedScene loadAnyScene(const std::string& path, const SceneArgs& a);
 
-struct RenderArgs {
-  std::vector<std::string> scenes;
-  std::string output, outDir, format = "png", shard, size = "640x480", method = "reference",
-                              backend = "auto";
-  std::string ambient = "0,0,0", statsPath, errorMode = "node";
+// The lighting method and its lightcuts settings, as render and play take them.
+struct MethodArgs {
+  std::string method, errorMode = "node";
   float error = 0.02f;
   int maxCut = LightcutsSettings{}.maxCut;
   int cutTile = LightcutsSettings{}.tileSize;
+
+  // Throws Error for an unknown method.
+  Method parsed() const { return parseMethod(method); }
+  // The lightcuts settings these options give (trees aside).
+  LightcutsSettings lightcuts() const;
+};
+
+void addMethodOptions(CLI::App* app, MethodArgs& a);
+
+struct RenderArgs {
+  std::vector<std::string> scenes;
+  std::string output, outDir, format = "png", shard, size = "640x480", backend = "auto";
+  std::string ambient = "0,0,0", statsPath;
+  MethodArgs lighting{"reference"};
   int camera = -1;
   float exposure = 0.0f;
   SceneArgs input;
@@ -82,11 +95,8 @@ struct RenderArgs {
 int runRender(const RenderArgs& a, Clock::time_point processStart);
 
 struct PlayArgs {
-  std::string scene, output, size = "640x360", method = "lightcuts", backend = "auto", statsPath;
-  std::string errorMode = "node";
-  float error = 0.02f;
-  int maxCut = LightcutsSettings{}.maxCut;
-  int cutTile = LightcutsSettings{}.tileSize;
+  std::string scene, output, size = "640x360", backend = "auto", statsPath;
+  MethodArgs lighting{"lightcuts"};
   int camera = -1, frames = 0;
   float orbit = 360.0f, exposure = 0.0f, fps = 30.0f;
   SceneArgs input;

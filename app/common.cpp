@@ -74,6 +74,40 @@ std::unique_ptr<gl::Context> openContext(gl::Backend backend, bool verbose) {
   return context;
 }
 
+void addMethodOptions(CLI::App* app, MethodArgs& a) {
+  app->add_option(
+         "--method", a.method,
+         "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
+         "cuts through a light tree), lightcuts-distance (cuts by radius of influence)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
+  app->add_option("--error", a.error, "lightcuts: relative error ε of the stopping rule")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6f, 1.0f));
+  app->add_option("--error-mode", a.errorMode,
+                  "lightcuts: node (the paper's rule: each node's bound ≤ ε·estimate) or total "
+                  "(guaranteed: the sum of the cut's error bounds ≤ ε·estimate)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"node", "total"}));
+  app->add_option("--max-cut", a.maxCut, "lightcuts: most nodes in a pixel's cut")
+      ->capture_default_str()
+      ->check(CLI::Range(1, kMaxCutLimit));
+  app->add_option("--cut-tile", a.cutTile,
+                  "lightcuts: pixels share the cut of their N x N square where the rule holds for "
+                  "them (render/tile_cuts.h); 1: a cut per pixel")
+      ->capture_default_str()
+      ->check(CLI::IsMember({1, 4, 8, 16, 32, 64}));
+}
+
+LightcutsSettings MethodArgs::lightcuts() const {
+  LightcutsSettings s;
+  s.error = error;
+  s.maxCut = maxCut;
+  s.tileSize = cutTile;
+  s.mode = errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
+  return s;
+}
+
 void addSceneOptions(CLI::App* app, SceneArgs& a) {
   a.splitOption =
       app->add_option(

@@ -36,31 +36,7 @@ int main(int argc, char** argv) {
   render->add_option("--camera", r.camera,
                      "Index of the glTF camera to use (default: the first; with none, frame the "
                      "scene's bounds from a 3/4 view)");
-  render
-      ->add_option(
-          "--method", r.method,
-          "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
-          "cuts through a light tree), lightcuts-distance (cuts by radius of influence)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
-  render->add_option("--error", r.error, "lightcuts: relative error ε of the stopping rule")
-      ->capture_default_str()
-      ->check(CLI::Range(1e-6f, 1.0f));
-  render
-      ->add_option("--error-mode", r.errorMode,
-                   "lightcuts: node (the paper's rule: each node's bound ≤ ε·estimate) or total "
-                   "(guaranteed: the sum of the cut's error bounds ≤ ε·estimate)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"node", "total"}));
-  render->add_option("--max-cut", r.maxCut, "lightcuts: most nodes in a pixel's cut")
-      ->capture_default_str()
-      ->check(CLI::Range(1, kMaxCutLimit));
-  render
-      ->add_option("--cut-tile", r.cutTile,
-                   "lightcuts: pixels share the cut of their N x N square where the rule holds for "
-                   "them (render/tile_cuts.h); 1: a cut per pixel")
-      ->capture_default_str()
-      ->check(CLI::IsMember({1, 4, 8, 16, 32, 64}));
+  addMethodOptions(render, r.lighting);
   render
       ->add_option("--backend", r.backend,
                    "Context: auto (EGL device, EGL surfaceless, OSMesa), egl, osmesa")
@@ -103,24 +79,7 @@ int main(int argc, char** argv) {
   playCmd->add_option("--camera", p.camera,
                       "Index of the glTF camera the orbit starts from (default: the first; "
                       "with none, the thumbnail framing)");
-  playCmd->add_option("--method", p.method, "reference, lightcuts or lightcuts-distance")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
-  playCmd->add_option("--error", p.error, "lightcuts: relative error ε")
-      ->capture_default_str()
-      ->check(CLI::Range(1e-6f, 1.0f));
-  playCmd->add_option("--error-mode", p.errorMode, "lightcuts: node or total")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"node", "total"}));
-  playCmd->add_option("--max-cut", p.maxCut, "lightcuts: most nodes in a pixel's cut")
-      ->capture_default_str()
-      ->check(CLI::Range(1, kMaxCutLimit));
-  playCmd
-      ->add_option("--cut-tile", p.cutTile,
-                   "lightcuts: pixels share the cut of their N x N square where the rule holds for "
-                   "them (render/tile_cuts.h); 1: a cut per pixel")
-      ->capture_default_str()
-      ->check(CLI::IsMember({1, 4, 8, 16, 32, 64}));
+  addMethodOptions(playCmd, p.lighting);
   playCmd->add_option("--exposure", p.exposure, "Exposure in EV")->capture_default_str();
   playCmd->add_option("--backend", p.backend, "Context: auto, egl, osmesa")->capture_default_str();
   addSceneOptions(playCmd, p.input);

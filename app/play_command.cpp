@@ -69,11 +69,8 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
     checkOutputPath(first);
   }
   r.camera = a.camera;
-  r.method = parseMethod(a.method);
-  r.lightcuts.error = a.error;
-  r.lightcuts.maxCut = a.maxCut;
-  r.lightcuts.tileSize = a.cutTile;
-  r.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
+  r.method = a.lighting.parsed();
+  r.lightcuts = a.lighting.lightcuts();
   r.lightcuts.trees = a.input.trees();
   request.frames = a.frames;
   request.fps = a.fps;

@@ -92,7 +92,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     stats["covered_pixels"] = c.pixels;
     if (request.method == Method::Lightcuts) {
       stats["error"] = request.lightcuts.error;
-      stats["error_mode"] = a.errorMode;
+      stats["error_mode"] = a.lighting.errorMode;
     }
     stats["max_cut"] = request.lightcuts.maxCut;
     stats["cut_tile"] = request.lightcuts.tileSize;
@@ -128,11 +128,8 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   }
   request.camera = a.camera;
   request.ambient = parseRgb(a.ambient);
-  request.method = parseMethod(a.method);
-  request.lightcuts.error = a.error;
-  request.lightcuts.maxCut = a.maxCut;
-  request.lightcuts.tileSize = a.cutTile;
-  request.lightcuts.mode = a.errorMode == "total" ? ErrorMode::Total : ErrorMode::Node;
+  request.method = a.lighting.parsed();
+  request.lightcuts = a.lighting.lightcuts();
   request.lightcuts.trees = a.input.trees();
   const gl::Backend backend = gl::parseBackend(a.backend);
   std::vector<Thumbnail> jobs;
