@@ -21,6 +21,14 @@ LightOrder lightOrder(const std::vector<Light>& lights) {
   return order;
 }
 
+SpotConeTerms spotConeTerms(const Light& l) {
+  if (l.type != LightType::Spot) return {};
+  const double cosOuter = std::cos(double(l.outerConeAngle));
+  const double cosInner = std::cos(double(l.innerConeAngle));
+  const double s = 1.0 / std::max(cosInner - cosOuter, shading::kMinConeWidth);
+  return {float(s), float(-cosOuter * s)};
+}
+
 PackedLights packLights(const std::vector<Light>& lights) {
   PackedLights packed;
   const LightOrder order = lightOrder(lights);
@@ -39,18 +47,11 @@ PackedLights packLights(const std::vector<Light>& lights) {
       t[0] = l.position.x, t[1] = l.position.y, t[2] = l.position.z;
       t[3] = l.range > 0.0f && std::isfinite(l.range) ? 1.0f / (l.range * l.range) : 0.0f;
     }
-    float scale = 0.0f, offset = 1.0f;
-    if (l.type == LightType::Spot) {
-      const double cosOuter = std::cos(double(l.outerConeAngle));
-      const double cosInner = std::cos(double(l.innerConeAngle));
-      const double s = 1.0 / std::max(cosInner - cosOuter, shading::kMinConeWidth);
-      scale = float(s);
-      offset = float(-cosOuter * s);
-      t[4] = l.direction.x, t[5] = l.direction.y, t[6] = l.direction.z;
-    }
-    t[7] = scale;
+    if (l.type == LightType::Spot) t[4] = l.direction.x, t[5] = l.direction.y, t[6] = l.direction.z;
+    const SpotConeTerms cone = spotConeTerms(l);
+    t[7] = cone.scale;
     t[8] = radiant.r, t[9] = radiant.g, t[10] = radiant.b;
-    t[11] = offset;
+    t[11] = cone.offset;
   }
   return packed;
 }

@@ -24,4 +24,11 @@ struct PackedLights {
 // Packs `lights` in lightOrder(lights).
 PackedLights packLights(const std::vector<Light>& lights);
 
+// A spot's cone as the light texture holds it: the shader's falloff is
+// smoothstep(clamp(cos · scale + offset, 0, 1)), cos to the spot's direction.
+struct SpotConeTerms {
+  float scale = 0.0f, offset = 1.0f;  // a light that is not a spot: always 1
+};
+SpotConeTerms spotConeTerms(const Light& light);
+
 }  // namespace manylight

@@ -8,7 +8,6 @@
 #include <thread>
 
 #include "bake/light_pack.h"
-#include "bake/light_texture_layout.h"
 #include "bake/light_tree_layout.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
@@ -66,11 +65,12 @@ struct TileCutter::Result {
 
 TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& lights)
     : colour_(packed.colour) {
-  const PackedLights texels = packLights(lights);  // the cone as the shader reads it
-  spotStart_ = texels.spotStart;
-  for (std::size_t slot = std::size_t(texels.spotStart); slot < lights.size(); ++slot) {
-    const float* t = &texels.texels[slot * layout::kFloatsPerLight];
-    spotCones_.push_back({{t[4], t[5], t[6]}, t[7], t[11]});
+  const LightOrder order = lightOrder(lights);  // the light texture's slots
+  spotStart_ = order.spotStart;
+  for (std::size_t slot = std::size_t(order.spotStart); slot < lights.size(); ++slot) {
+    const Light& l = lights[std::size_t(order.scene[slot])];
+    const SpotConeTerms terms = spotConeTerms(l);
+    spotCones_.push_back({l.direction, terms.scale, terms.offset});
   }
   int slots = 0;
   for (int t = 0; t < 3; ++t) {
