@@ -41,12 +41,17 @@ float spotCone(vec4 b, float offset, vec3 l) {
   return t * t * (3.0 - 2.0 * t);
 }
 
-// Irradiance at p from spot light i: the point light's, times the cone's smoothstep.
-vec3 spotIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
-  vec4 a = texelFetch(uLights, 3 * i);
-  vec4 b = texelFetch(uLights, 3 * i + 1);
-  vec4 c = texelFetch(uLights, 3 * i + 2);
+// Irradiance at p from a spot light given by its three texels a, b, c: the point light's,
+// times the cone's smoothstep. (A shared tile cut's spot entry has the same texels, with the
+// node's intensity in c.rgb.)
+vec3 spotTexelsIrradiance(vec4 a, vec4 b, vec4 c, vec3 p, vec3 n, out vec3 l) {
   return c.rgb * (pointFalloff(a, p, n, l) * spotCone(b, c.w, l));
+}
+
+// Irradiance at p from spot light i.
+vec3 spotIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
+  return spotTexelsIrradiance(texelFetch(uLights, 3 * i), texelFetch(uLights, 3 * i + 1),
+                              texelFetch(uLights, 3 * i + 2), p, n, l);
 }
 
 // Irradiance per unit colour · intensity at p from light i of type `type` (0 directional,

@@ -363,9 +363,10 @@ uniform int uTilesX;
 
 // Entries hold their representative's direction or position (and 1/range², and a spot's
 // cone) themselves, so the loop reads the tile's entries in order instead of lights
-// scattered over the light texture. Pixels on a shared cut are Lambert only (render/tile_cuts.h), so the sum
-// is of irradiance, times albedo/π at the end. One line each: GLSL 3.30 has no line
-// continuation. Two entries per iteration, as the reference path sums four lights.
+// scattered over the light texture. Pixels on a shared cut are Lambert only
+// (render/tile_cuts.h), so the sum is of irradiance, times albedo/π at the end. One line
+// each: GLSL 3.30 has no line continuation. Two entries per iteration, as the reference path
+// sums four lights.
 #define EMBEDDED_SUM(first, count, TERM) for (k = first; k + 4 <= first + 2 * count; k += 4) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); vec4 c0 = uintBitsToFloat(texelFetch(uTileCuts, k + 1)); vec4 a1 = uintBitsToFloat(texelFetch(uTileCuts, k + 2)); vec4 c1 = uintBitsToFloat(texelFetch(uTileCuts, k + 3)); sum += TERM(a0) * c0.rgb + TERM(a1) * c1.rgb; } if (k < first + 2 * count) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); sum += TERM(a0) * uintBitsToFloat(texelFetch(uTileCuts, k + 1)).rgb; }
 #define DIRECTIONAL_T(a) max(dot(s.normal, a.xyz), 0.0)
 #define POINT_T(a) pointFalloff(a, s.position, s.normal, unusedL)
@@ -406,11 +407,10 @@ bool tileCut() {
   EMBEDDED_SUM(first, counts.y, POINT_T);
   first += 2 * counts.y;
   for (k = first; k < first + 3 * counts.z; k += 3) {
-    vec4 a = uintBitsToFloat(texelFetch(uTileCuts, k));
-    vec4 b = uintBitsToFloat(texelFetch(uTileCuts, k + 1));
-    vec4 c = uintBitsToFloat(texelFetch(uTileCuts, k + 2));
-    vec3 l;
-    sum += c.rgb * (pointFalloff(a, s.position, s.normal, l) * spotCone(b, c.w, l));
+    sum += spotTexelsIrradiance(uintBitsToFloat(texelFetch(uTileCuts, k)),
+                                uintBitsToFloat(texelFetch(uTileCuts, k + 1)),
+                                uintBitsToFloat(texelFetch(uTileCuts, k + 2)), s.position,
+                                s.normal, unusedL);
   }
   sum *= s.albedo / kPi;
   int count = counts.x + counts.y + counts.z;
