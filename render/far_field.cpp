@@ -2,10 +2,10 @@
 
 #include <cstring>
 
+#include "scene/shading_model.h"
+
 namespace manylight {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::uint32_t floatToBits(float f) {
   std::uint32_t w;
@@ -23,7 +23,7 @@ void writeTexel(std::vector<std::uint32_t>& words, glm::dvec3 v) {
 double linearisationBound(double rMin2, double invRange2, double h2) {
   const double a = invRange2;
   const double secondDerivative = 6.0 / (rMin2 * rMin2) + 15.4 * a / rMin2 + 32.0 * a * a;
-  return 0.5 * secondDerivative * h2 / kPi;
+  return 0.5 * secondDerivative * h2 / shading::kPi;
 }
 
 void FarField::addDirectional(glm::vec3 towards, glm::vec3 intensity) {

@@ -32,6 +32,13 @@ inline float widenDown(float c, float cg, float sg) {
   return std::max(c * cg - std::sqrt(1.0f - c * c) * sg, 0.0f);
 }
 
+// The nearest and farthest squared lengths of the vectors in the box [dMin, dMax].
+inline glm::vec2 lengths2(glm::vec3 dMin, glm::vec3 dMax) {
+  const glm::vec3 nearest = glm::clamp(glm::vec3(0.0f), dMin, dMax);
+  const glm::vec3 farthest = glm::max(glm::abs(dMin), glm::abs(dMax));
+  return {glm::dot(nearest, nearest), glm::dot(farthest, farthest)};
+}
+
 // The cosine bounds of nodeBounds in glsl/lighting_lightcuts.frag, over the box D of all
 // vectors from a shading point of the region to a light of the node (directional trees:
 // the node's directions): the largest and smallest cosine to `u` over the box (`dist`: the

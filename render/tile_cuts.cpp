@@ -270,6 +270,12 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
     glm::vec3 intensity;  // decoded (internal nodes) or exact (leaves)
   };
 
+  // The smallest cosine between a normal of the region and a vector of the box [dMin, dMax],
+  // whose farthest length is dFar and bounding sphere's lower cosine sphereLower.
+  auto lowestCosine = [&](glm::vec3 dMin, glm::vec3 dMax, float dFar, float sphereLower) {
+    return widenDown(std::max(cosineLower(g.axis, dMin, dMax, dFar), sphereLower), g.cosSpread,
+                     g.sinSpread);
+  };
   // The representative's shading at the centre per unit albedo and intensity.
   auto unitEstimate = [&](int tree, const Node& n) {
     const int leaf = leafOfSlot_[std::size_t(n.representative)];
@@ -303,15 +309,13 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
       dMin = n.boxMin - g.pMax;
       dMax = n.boxMax - g.pMin;
     }
-    const glm::vec3 nearest = glm::clamp(glm::vec3(0.0f), dMin, dMax);
-    const float d2Min = glm::dot(nearest, nearest);
+    const glm::vec2 d2 = lengths2(dMin, dMax);
+    const float d2Min = d2.x, d2Max = d2.y;
     it.dark = false;
     if (tree != 0 && d2Min == 0.0f) {
       if (!n.leaf) it.measure = std::numeric_limits<float>::infinity();
       return it;
     }
-    const glm::vec3 farthest = glm::max(glm::abs(dMin), glm::abs(dMax));
-    const float d2Max = glm::dot(farthest, farthest);
     const float dist = std::sqrt(d2Min);
     const glm::vec2 sphere = sphereCosines(g.axis, dMin, dMax);
     const float cosUp = widenUp(std::min(cosineUpper(g.axis, dMin, dMax, dist), sphere.x),
@@ -332,9 +336,7 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
         return it;
       }
       if (rule.total && gLow > 0.0f) {
-        const float cosLow =
-            widenDown(std::max(cosineLower(g.axis, dMin, dMax, std::sqrt(d2Max)), sphere.y),
-                      g.cosSpread, g.sinSpread);
+        const float cosLow = lowestCosine(dMin, dMax, std::sqrt(d2Max), sphere.y);
         lower = glm::max(n.intensity - slack, glm::vec3(0.0f)) * (cosLow * gLow / kPi);
       }
     }
@@ -422,16 +424,11 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
       if (widenDown(glm::dot(g.axis, l.boxMin), g.cosSpread, g.sinSpread) <= 0.0f) continue;
     } else {
       const glm::vec3 dMin = l.boxMin - g.pMax, dMax = l.boxMin - g.pMin;
-      const glm::vec3 nearest = glm::clamp(glm::vec3(0.0f), dMin, dMax);
-      const float d2Min = glm::dot(nearest, nearest);
-      if (d2Min <= 0.0f) continue;
-      const glm::vec3 farthest = glm::max(glm::abs(dMin), glm::abs(dMax));
-      const float cosLow = widenDown(
-          std::max(cosineLower(g.axis, dMin, dMax, std::sqrt(glm::dot(farthest, farthest))),
-                   sphereCosines(g.axis, dMin, dMax).y),
-          g.cosSpread, g.sinSpread);
-      if (cosLow <= 0.0f) continue;
-      t = float(linearisationBound(d2Min, l.invRange2, h2));
+      const glm::vec2 d2 = lengths2(dMin, dMax);
+      if (d2.x <= 0.0f ||
+          lowestCosine(dMin, dMax, std::sqrt(d2.y), sphereCosines(g.axis, dMin, dMax).y) <= 0.0f)
+        continue;
+      t = float(linearisationBound(d2.x, l.invRange2, h2));
     }
     linearisation[std::size_t(k)] = it.intensity * t;
     foldable.emplace_back(maxOf(it.intensity) * t, k);
