@@ -405,10 +405,15 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
   // cut stopped at; under the total rule the smallest T fold first while the summed bound
   // stays within kFoldMargin of the rule.
   const float h2 = 0.25f * glm::dot(g.pMax - g.pMin, g.pMax - g.pMin);
-  thread_local std::vector<std::pair<float, int>> foldable;  // (max T, item)
-  thread_local std::vector<glm::vec3> linearisation;         // T per item
+  struct Foldable {
+    int item;
+    glm::vec3 t;                               // T per channel
+    bool operator<(const Foldable& o) const {  // smallest T first
+      return std::make_pair(maxOf(t), item) < std::make_pair(maxOf(o.t), o.item);
+    }
+  };
+  thread_local std::vector<Foldable> foldable;
   foldable.clear();
-  linearisation.assign(items.size(), glm::vec3(0.0f));
   for (const int k : settled) {
     const Item& it = items[std::size_t(k)];
     if (it.dark) continue;
@@ -430,30 +435,28 @@ TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
         continue;
       t = float(linearisationBound(d2.x, l.invRange2, h2));
     }
-    linearisation[std::size_t(k)] = it.intensity * t;
-    foldable.emplace_back(maxOf(it.intensity) * t, k);
+    foldable.push_back({k, it.intensity * t});
   }
   thread_local std::vector<bool> folded;
   folded.assign(items.size(), false);
   if (rule.total) {
     std::sort(foldable.begin(), foldable.end());
-    for (const auto& [t, k] : foldable) {
-      const glm::vec3 b = result.check + linearisation[std::size_t(k)];
+    for (const Foldable& f : foldable) {
+      const glm::vec3 b = result.check + f.t;
       if (maxOf(b) > kFoldMargin * rule.error * maxOf(sum - b)) break;
       result.check = b;
-      folded[std::size_t(k)] = true;
+      folded[std::size_t(f.item)] = true;
     }
   } else {
-    for (const auto& [t, k] : foldable) {
-      const glm::vec3 b = items[std::size_t(k)].error + linearisation[std::size_t(k)];
+    for (const Foldable& f : foldable) {
+      const glm::vec3 b = items[std::size_t(f.item)].error + f.t;
       if (maxOf(b) > kMargin * rule.error * maxOf(sum)) continue;
       result.check = glm::max(result.check, b);
-      folded[std::size_t(k)] = true;
+      folded[std::size_t(f.item)] = true;
     }
   }
 
-  // The cut's entries, tree by tree (the far field first), and the bounds every pixel checks
-  // against.
+  // The cut's entries: the far field first, then tree by tree (the bounds are set above).
   FarField far(centre);
   thread_local std::vector<std::uint32_t> byTree[3];
   for (auto& e : byTree) e.clear();
