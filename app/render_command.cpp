@@ -85,8 +85,9 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     stats["max_cut_size"] = c.maxCut;
     stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
     stats["pixels_shared_cut"] = c.pixelsSharedCut;
-    stats["shared_cut_squares"] = c.sharedSquares;
-    stats["per_pixel_squares"] = c.perPixelSquares;
+    stats["shared_cuts"] = c.sharedCuts;
+    stats["per_pixel_groups"] = c.perPixelGroups;
+    stats["surface_splits"] = c.surfaceSplits;
     stats["light_evaluations_per_pixel"] = c.lightEvaluations;
     stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
     stats["covered_pixels"] = c.pixels;

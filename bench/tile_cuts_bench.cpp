@@ -68,9 +68,10 @@ void cutFrame(benchmark::State& state) {
   state.counters["threads"] = threads;
   state.counters["bounds"] = double(cuts.boundEvaluations);
   state.counters["entry_texels"] =
-      double(cuts.texels.size() / 4 - 2 * std::size_t(cuts.tilesX) * cuts.tilesY);
-  state.counters["shared_squares"] = cuts.sharedTiles;
-  state.counters["per_pixel_squares"] = cuts.perPixelTiles;
+      double(cuts.texels.size() / 4 - 2 * std::size_t(cuts.sharedCuts));
+  state.counters["shared_cuts"] = cuts.sharedCuts;
+  state.counters["per_pixel_groups"] = cuts.perPixelGroups;
+  state.counters["surface_splits"] = cuts.surfaceSplits;
 }
 
 // Arguments: lights, rule (0 node, 1 total), threads (0 all, 1 one).

@@ -31,6 +31,7 @@
   X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                   \
   X(PFNGLBINDTEXTUREPROC, glBindTexture)                         \
   X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                           \
+  X(PFNGLTEXSUBIMAGE2DPROC, glTexSubImage2D)                     \
   X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                     \
   X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                     \
   X(PFNGLGENERATEMIPMAPPROC, glGenerateMipmap)                   \

@@ -353,13 +353,12 @@ void totalRuleCut() {
 }
 
 #ifdef TILE_CUTS
-// The cut of this pixel's tile, found on the CPU with bounds that hold over the whole tile
-// (render/tile_cuts.h documents it and the texels): sums its representatives and checks
-// the stopping rule for this pixel. Returns false, leaving the pixel to cut for itself,
-// when the tile has no shared cut or the rule does not hold here.
+// The cut this pixel shares with its group, found on the CPU with bounds that hold at every
+// pixel of the group (render/tile_cuts.h documents it and the texels): sums its
+// representatives and checks the stopping rule for this pixel. Returns false, leaving the
+// pixel to cut for itself, when it has no shared cut or the rule does not hold here.
 uniform usamplerBuffer uTileCuts;
-uniform int uTileSize;
-uniform int uTilesX;
+uniform usampler2D uCutOfPixel;
 
 // Entries hold their representative's direction or position (and 1/range², and a spot's
 // cone) themselves, so the loop reads the tile's entries in order instead of lights
@@ -387,14 +386,13 @@ vec3 farField(int k) {
 }
 
 bool tileCut() {
-  ivec2 tile = ivec2(gl_FragCoord.xy) / uTileSize;
-  int t = tile.y * uTilesX + tile.x;
-  uvec4 head = texelFetch(uTileCuts, 2 * t);
-  uvec4 check = texelFetch(uTileCuts, 2 * t + 1);
-  if ((check.w & 1u) != 0u) return false;
+  uint c = texelFetch(uCutOfPixel, ivec2(gl_FragCoord.xy), 0).r;
+  if (c == 0xffffffffu) return false;  // kNoSharedCut
+  uvec4 head = texelFetch(uTileCuts, 2 * int(c));
+  uvec4 check = texelFetch(uTileCuts, 2 * int(c) + 1);
   vec3 bound = s.albedo * uintBitsToFloat(check.xyz);
   ivec3 counts = ivec3(head.yzw);
-  int folded = int(check.w >> 8u);  // kTileFoldedShift
+  int folded = int(check.w);
   vec3 sum = vec3(0.0);
   int k;
   int first = int(head.x);

@@ -30,6 +30,13 @@ LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& l
                                    "light trees of " + std::to_string(nodeWords) + " words");
   words = {};
 
+  if (tileCutter_) {  // sized once; each frame's cut numbers replace the last
+    glBindTexture(GL_TEXTURE_2D, cutOfPixel_.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, width_, height_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                 nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
   glBindTexture(GL_TEXTURE_2D, statsTarget_.id());
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width_, height_, 0, GL_RGBA, GL_FLOAT, nullptr);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -94,8 +101,9 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     glActiveTexture(GL_TEXTURE6);
     glBindTexture(GL_TEXTURE_BUFFER, tileCuts_.texture.id());
     glUniform1i(shader.uniform("uTileCuts"), 6);
-    glUniform1i(shader.uniform("uTileSize"), tileInfo_.tileSize);
-    glUniform1i(shader.uniform("uTilesX"), tileInfo_.tilesX);
+    glActiveTexture(GL_TEXTURE7);
+    glBindTexture(GL_TEXTURE_2D, cutOfPixel_.id());
+    glUniform1i(shader.uniform("uCutOfPixel"), 7);
   }
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_BLEND);
@@ -124,6 +132,12 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& 
   tileCuts_ = gl::uploadTextureBuffer(tileInfo_.texels.data(), tileInfo_.texels.size() / 4,
                                       GL_RGBA32UI, "tile cuts");
   tileInfo_.texels = {};
+  glBindTexture(GL_TEXTURE_2D, cutOfPixel_.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                  tileInfo_.cutOfPixel.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+  tileInfo_.cutOfPixel = {};
 }
 
 CutStats LightcutsMethod::cutStats() const {
@@ -135,8 +149,9 @@ CutStats LightcutsMethod::cutStats() const {
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   CutStats stats;
-  stats.sharedSquares = tileInfo_.sharedTiles;
-  stats.perPixelSquares = tileInfo_.perPixelTiles;
+  stats.sharedCuts = tileInfo_.sharedCuts;
+  stats.perPixelGroups = tileInfo_.perPixelGroups;
+  stats.surfaceSplits = tileInfo_.surfaceSplits;
   double cut = 0.0, lightEvals = 0.0, nodeEvals = 0.0;
   stats.atMaxCut.assign(std::size_t(width_) * height_, 0);
   for (std::size_t i = 0; i < texels.size(); i += 4) {

@@ -41,8 +41,10 @@ struct CutStats {
   int maxCut = 0;
   long long pixelsAtMaxCut = 0;
   long long pixelsSharedCut = 0;  // pixels that took their tile's cut (render/tile_cuts.h)
-  int sharedSquares = 0, perPixelSquares = 0;  // squares with a shared cut, and left per pixel
-  double lightEvaluations = 0.0;               // per pixel
+  // Groups of pixels with a shared cut, groups left per pixel, and groups split into their
+  // surfaces (render/tile_cuts.h).
+  int sharedCuts = 0, perPixelGroups = 0, surfaceSplits = 0;
+  double lightEvaluations = 0.0;       // per pixel
   double nodeEvaluations = 0.0;        // per pixel (error bounds or distance tests), with the
                                        // tile cuts' bounds on the CPU spread over the pixels
   std::vector<std::uint8_t> atMaxCut;  // per pixel, rows top-down: 1 where the cut hit the maximum
@@ -80,7 +82,8 @@ class LightcutsMethod {
   gl::TextureBuffer nodes_;
   std::unique_ptr<TileCutter> tileCutter_;  // null for the distance criterion
   mutable gl::TextureBuffer tileCuts_;      // this frame's (render/tile_cuts.h)
-  mutable TileCuts tileInfo_;               // its sizes and counts (the texels are dropped)
+  gl::Texture cutOfPixel_;                  // this frame's cut per pixel (R32UI)
+  mutable TileCuts tileInfo_;               // its counts (the texels are dropped)
   mutable std::vector<float> readback_;
   bool distance_;
   int width_, height_;

@@ -48,12 +48,6 @@ float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
 }  // namespace
 
-// The tile's shading points: their box, and a cone around `axis` holding their normals.
-struct TileCutter::Region {
-  glm::vec3 pMin, pMax, axis;
-  float cosSpread, sinSpread;
-};
-
 struct TileCutter::Result {
   int counts[3] = {0, 0, 0};  // entries per tree, besides the far field
   int folded = 0;             // entries in the far field
@@ -110,102 +104,94 @@ TileCutter::Node TileCutter::decode(const PackedTrees& packed, int tree, int i) 
   return n;
 }
 
-// The region of the pixels [x0, x1) × [y0, y1); false when no pixel is covered. `perPixel`:
-// some pixel is specular (its bounds are not per unit albedo), or the normals cancel out.
-bool TileCutter::region(const GBufferPixels& px, int x0, int y0, int x1, int y1, Region& g,
-                        bool& perPixel) {
-  g = Region{glm::vec3(std::numeric_limits<float>::max()),
-             glm::vec3(-std::numeric_limits<float>::max()), glm::vec3(0.0f), 1.0f, 0.0f};
-  int covered = 0;
-  bool specular = false;
-  for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x) {
-      const std::size_t i = (std::size_t(y) * px.width + x) * 4;
-      if (px.normal[i + 3] == 0.0f) continue;
-      ++covered;
-      const glm::vec3 p{px.position[i], px.position[i + 1], px.position[i + 2]};
-      g.pMin = glm::min(g.pMin, p);
-      g.pMax = glm::max(g.pMax, p);
-      g.axis += glm::vec3{px.normal[i], px.normal[i + 1], px.normal[i + 2]};
-      specular = specular || px.specular[i] != 0.0f || px.specular[i + 1] != 0.0f ||
-                 px.specular[i + 2] != 0.0f;
-    }
-  }
-  if (covered == 0) return false;
-  const float len = glm::length(g.axis);
-  if (len > 0.0f) g.axis /= len;
-  for (int y = y0; y < y1 && len > 0.0f; ++y) {
-    for (int x = x0; x < x1; ++x) {
-      const std::size_t i = (std::size_t(y) * px.width + x) * 4;
-      if (px.normal[i + 3] == 0.0f) continue;
-      const glm::vec3 n{px.normal[i], px.normal[i + 1], px.normal[i + 2]};
-      g.cosSpread = std::min(g.cosSpread, glm::dot(n, g.axis) / std::max(glm::length(n), 1e-20f));
-    }
-  }
-  // Round-off: a flat tile's normals differ in their last bits.
-  g.cosSpread = std::max(g.cosSpread - 1e-6f, -1.0f);
-  g.sinSpread = std::sqrt(std::max(1.0f - g.cosSpread * g.cosSpread, 0.0f));
-  perPixel = specular || len == 0.0f;
-  return true;
-}
-
 TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& rule,
                          int threads) const {
   TileCuts out;
   const int fine = std::min(kFinestTile, tileSize);
-  out.tileSize = fine;
-  out.tilesX = (px.width + fine - 1) / fine;
-  out.tilesY = (px.height + fine - 1) / fine;
+  out.tileSize = tileSize;
+  out.cutOfPixel.assign(std::size_t(px.width) * px.height, kNoSharedCut);
   const int coarseX = (px.width + tileSize - 1) / tileSize;
   const int coarse = coarseX * ((px.height + tileSize - 1) / tileSize);
   threads = std::clamp(threads, 1, std::max(coarse, 1));
 
-  // A square of the quadtree that got a shared cut, or is left to per-pixel cuts.
-  struct Square {
-    int x0, y0, size;  // pixels
-    Result result;
-    std::size_t entry;  // its first word in the thread's entries
+  // Per thread: its cuts (numbered in order; cutOfPixel holds these numbers until the merge)
+  // and their entries.
+  struct Part {
+    std::vector<Result> cuts;
+    std::vector<std::size_t> entry;  // each cut's first word in `entries`
+    std::vector<std::uint32_t> entries;
+    long long bounds = 0;  // split groups' too
+    int perPixel = 0, splits = 0;
   };
-  std::vector<std::vector<Square>> squares(static_cast<std::size_t>(threads));
-  std::vector<std::vector<std::uint32_t>> entries(static_cast<std::size_t>(threads));
-  std::vector<long long> bounds(static_cast<std::size_t>(threads), 0);  // split squares' too
+  std::vector<Part> parts(static_cast<std::size_t>(threads));
 
-  auto work = [&](int part) {
-    std::vector<std::uint32_t>& mine = entries[std::size_t(part)];
-    std::vector<Square>& done = squares[std::size_t(part)];
-    std::vector<std::array<int, 3>> todo;
-    for (int t = part; t < coarse; t += threads) {
-      todo.push_back({(t % coarseX) * tileSize, (t / coarseX) * tileSize, tileSize});
+  // A group of a square's covered pixels (indices y · width + x).
+  struct Group {
+    int x0, y0, size;
+    std::vector<int> pixels;
+  };
+  auto work = [&](int index) {
+    Part& part = parts[std::size_t(index)];
+    std::vector<Group> todo;
+    for (int t = index; t < coarse; t += threads) {
+      Group top{(t % coarseX) * tileSize, (t / coarseX) * tileSize, tileSize, {}};
+      for (int y = top.y0; y < std::min(top.y0 + tileSize, px.height); ++y) {
+        for (int x = top.x0; x < std::min(top.x0 + tileSize, px.width); ++x) {
+          const std::size_t i = std::size_t(y) * px.width + x;
+          const float* ks = px.specular + 4 * i;
+          // Specular pixels' bounds are not per unit albedo: they cut for themselves.
+          if (px.normal[4 * i + 3] != 0.0f && ks[0] == 0.0f && ks[1] == 0.0f && ks[2] == 0.0f)
+            top.pixels.push_back(int(i));
+        }
+      }
+      if (!top.pixels.empty()) todo.push_back(std::move(top));
       while (!todo.empty()) {
-        const auto [x0, y0, size] = todo.back();
+        Group group = std::move(todo.back());
         todo.pop_back();
-        Region g;
-        bool perPixel = false;
-        if (!region(px, x0, y0, std::min(x0 + size, px.width), std::min(y0 + size, px.height), g,
-                    perPixel)) {
+        ShadingRegion g;
+        const bool cone = shadingRegion(px, group.pixels, g);
+        Result result;
+        const std::size_t entry = part.entries.size();
+        // Normals over 90° apart leave no cosine bound: split without trying.
+        if (cone && g.cosSpread >= 0.0f) {
+          result = cutTile(g, rule, part.entries);
+          part.bounds += result.bounds;
+        }
+        if (cone && g.cosSpread >= 0.0f && !result.perPixel) {
+          for (const int i : group.pixels)
+            out.cutOfPixel[std::size_t(i)] = std::uint32_t(part.cuts.size());
+          part.cuts.push_back(result);
+          part.entry.push_back(entry);
           continue;
         }
-        Square sq{x0, y0, size, Result{}, mine.size()};
-        if (!perPixel) sq.result = cutTile(g, rule, mine);
-        sq.result.perPixel = sq.result.perPixel || perPixel;
-        bounds[std::size_t(part)] += sq.result.bounds;
-        // Under the total rule, a cut that filled up far from its target fills up in the
-        // quarters too (its bounds add up over the whole cut); under the node rule the
-        // culprit is mostly a light near one corner, which a quarter leaves out.
-        if (sq.result.perPixel && size > fine &&
-            (!rule.total || sq.result.shortfall < kSplitShortfall)) {
-          // Smaller squares have tighter bounds: try the four quarters.
-          mine.resize(sq.entry);
-          const int h = size / 2;
-          for (int q = 0; q < 4; ++q) {
-            if (x0 + (q & 1) * h < px.width && y0 + (q >> 1) * h < px.height) {
-              todo.push_back({x0 + (q & 1) * h, y0 + (q >> 1) * h, h});
-            }
+        part.entries.resize(entry);
+        Group a{group.x0, group.y0, group.size, {}}, b = a;
+        if ((!cone || g.cosSpread < kSurfaceSpread) &&
+            splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) {
+          ++part.splits;
+          todo.push_back(std::move(a));
+          todo.push_back(std::move(b));
+          continue;
+        }
+        // Smaller squares have tighter bounds: try the quarters. Under the total rule, a cut
+        // that filled up far from its target fills up in the quarters too (its bounds add up
+        // over the whole cut); under the node rule the culprit is mostly a light near one
+        // corner, which a quarter leaves out.
+        if (cone && group.size > fine && (!rule.total || result.shortfall < kSplitShortfall)) {
+          const int h = group.size / 2;
+          Group quarter[4];
+          for (int q = 0; q < 4; ++q)
+            quarter[q] = {group.x0 + (q & 1) * h, group.y0 + (q >> 1) * h, h, {}};
+          for (const int i : group.pixels) {
+            const int x = i % px.width, y = i / px.width;
+            quarter[(x >= group.x0 + h ? 1 : 0) + (y >= group.y0 + h ? 2 : 0)].pixels.push_back(i);
+          }
+          for (Group& q : quarter) {
+            if (!q.pixels.empty()) todo.push_back(std::move(q));
           }
           continue;
         }
-        if (sq.result.perPixel) mine.resize(sq.entry);
-        done.push_back(sq);
+        ++part.perPixel;
       }
     }
   };
@@ -213,46 +199,49 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     work(0);
   } else {
     std::vector<std::thread> pool;
-    for (int part = 0; part < threads; ++part) pool.emplace_back(work, part);
+    for (int index = 0; index < threads; ++index) pool.emplace_back(work, index);
     for (std::thread& th : pool) th.join();
   }
 
-  const std::size_t tiles = std::size_t(out.tilesX) * out.tilesY;
-  std::size_t entryTexels = 0;
-  for (const auto& e : entries) entryTexels += e.size() / 4;
-  out.texels.assign((2 * tiles + entryTexels) * 4, 0u);
-  std::size_t next = 2 * tiles;
-  for (int part = 0; part < threads; ++part) {
-    out.boundEvaluations += bounds[std::size_t(part)];
-    for (const Square& sq : squares[std::size_t(part)]) {
-      const Result& r = sq.result;
-      r.perPixel ? ++out.perPixelTiles : ++out.sharedTiles;
-      std::uint32_t head[8] = {std::uint32_t(next),
-                               std::uint32_t(r.counts[0]),
-                               std::uint32_t(r.counts[1]),
-                               std::uint32_t(r.counts[2]),
-                               floatToBits(r.check.x),
-                               floatToBits(r.check.y),
-                               floatToBits(r.check.z),
-                               (r.perPixel ? kTilePerPixel : 0u) | std::uint32_t(r.folded)
-                                                                       << kTileFoldedShift};
-      for (int ty = sq.y0 / fine; ty < std::min((sq.y0 + sq.size) / fine, out.tilesY); ++ty) {
-        for (int tx = sq.x0 / fine; tx < std::min((sq.x0 + sq.size) / fine, out.tilesX); ++tx) {
-          std::copy_n(head, 8, out.texels.data() + (std::size_t(ty) * out.tilesX + tx) * 8);
-        }
-      }
-      if (r.perPixel) continue;
-      const std::vector<std::uint32_t>& src = entries[std::size_t(part)];
+  // Number the cuts part after part, and lay out headers, then entries.
+  std::vector<std::uint32_t> firstCut(parts.size(), 0);
+  std::size_t cuts = 0, entryTexels = 0;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    firstCut[k] = std::uint32_t(cuts);
+    cuts += parts[k].cuts.size();
+    entryTexels += parts[k].entries.size() / 4;
+    out.boundEvaluations += parts[k].bounds;
+    out.perPixelGroups += parts[k].perPixel;
+    out.surfaceSplits += parts[k].splits;
+  }
+  out.sharedCuts = int(cuts);
+  for (std::size_t i = 0; i < out.cutOfPixel.size(); ++i) {
+    std::uint32_t& c = out.cutOfPixel[i];
+    if (c == kNoSharedCut) continue;
+    const int x = int(i % std::size_t(px.width)), y = int(i / std::size_t(px.width));
+    c += firstCut[std::size_t(((y / tileSize) * coarseX + x / tileSize) % threads)];
+  }
+  out.texels.assign((2 * cuts + entryTexels) * 4, 0u);
+  std::size_t next = 2 * cuts;
+  std::uint32_t* head = out.texels.data();
+  for (const Part& part : parts) {
+    for (std::size_t k = 0; k < part.cuts.size(); ++k, head += 8) {
+      const Result& r = part.cuts[k];
+      const std::uint32_t words[8] = {std::uint32_t(next),        std::uint32_t(r.counts[0]),
+                                      std::uint32_t(r.counts[1]), std::uint32_t(r.counts[2]),
+                                      floatToBits(r.check.x),     floatToBits(r.check.y),
+                                      floatToBits(r.check.z),     std::uint32_t(r.folded)};
+      std::copy_n(words, 8, head);
       const std::size_t texels = std::size_t(2 * (r.counts[0] + r.counts[1]) + 3 * r.counts[2] +
                                              (r.folded > 0 ? kFarFieldTexels : 0));
-      std::copy_n(src.data() + sq.entry, texels * 4, out.texels.data() + next * 4);
+      std::copy_n(part.entries.data() + part.entry[k], texels * 4, out.texels.data() + next * 4);
       next += texels;
     }
   }
   return out;
 }
 
-TileCutter::Result TileCutter::cutTile(const Region& g, const CutRule& rule,
+TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& rule,
                                        std::vector<std::uint32_t>& entries) const {
   Result result;
   const glm::vec3 centre = 0.5f * (g.pMin + g.pMax);

@@ -72,6 +72,8 @@ glm::dvec3 unitRadiance(Light light, glm::dvec3 p, glm::dvec3 n) {
 
 struct Checked {
   int sharedPixels = 0, failing = 0;
+  int perPixel = 0;             // covered pixels without a shared cut
+  int mixedSurfaces = 0;        // shared pixels facing over 90° away from their cut's first pixel
   int farFieldPixels = 0;       // shared pixels whose cut has a far field
   double worstOverBound = 0.0;  // largest error / bound
 };
@@ -86,23 +88,28 @@ Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tile
       spotAt[{lights[i].position.x, lights[i].position.y, lights[i].position.z}] = i;
   }
   const TileCuts cuts = cutter.cut(g.pixels(), tileSize, CutRule{epsilon, true, 8000}, 2);
-  EXPECT_EQ(cuts.tileSize, kFinestTile);
+  EXPECT_EQ(cuts.cutOfPixel.size(), std::size_t(kSize * kSize));
   Checked c;
+  std::map<std::uint32_t, glm::dvec3> normalOfCut;  // its first pixel's
   for (int y = 0; y < kSize; ++y) {
     for (int x = 0; x < kSize; ++x) {
       const std::size_t i = (std::size_t(y) * kSize + x) * 4;
       if (g.normal[i + 3] == 0.0f) continue;
-      const std::uint32_t* head =
-          cuts.texels.data() +
-          (std::size_t(y / cuts.tileSize) * cuts.tilesX + x / cuts.tileSize) * 8;
-      if (head[7] & kTilePerPixel) continue;
+      const std::uint32_t cut = cuts.cutOfPixel[std::size_t(y) * kSize + x];
+      if (cut == kNoSharedCut) {
+        ++c.perPixel;
+        continue;
+      }
+      EXPECT_LT(cut, std::uint32_t(cuts.sharedCuts));
+      const std::uint32_t* head = cuts.texels.data() + std::size_t(cut) * 8;
       const glm::dvec3 p(g.position[i], g.position[i + 1], g.position[i + 2]);
       const glm::dvec3 n(g.normal[i], g.normal[i + 1], g.normal[i + 2]);
+      if (glm::dot(normalOfCut.emplace(cut, n).first->second, n) < 0.0) ++c.mixedSurfaces;
       glm::dvec3 exact(0.0), estimate(0.0);
       for (const Light& l : lights)
         exact += unitRadiance(l, p, n) * glm::dvec3(l.colour) * double(l.intensity);
       const std::uint32_t* e = cuts.texels.data() + std::size_t(head[0]) * 4;
-      if (head[7] >> kTileFoldedShift) {
+      if (head[7] > 0) {
         // The far field, as the shader takes it: per channel n · (F + J (x − c)) / π.
         auto texel = [&](int k) {
           return glm::dvec3(bitsToFloat(e[4 * k]), bitsToFloat(e[4 * k + 1]),
@@ -171,6 +178,10 @@ TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
         EXPECT_GT(c.farFieldPixels, c.sharedPixels / 2);
       }
       EXPECT_EQ(c.failing, 0);
+      // The ceiling patch's squares split by surface: every covered pixel shares a cut, and
+      // no cut is shared by normals over 90° apart.
+      EXPECT_EQ(c.perPixel, 0);
+      EXPECT_EQ(c.mixedSurfaces, 0);
       // The bound itself, with 1e-4 for its single-precision sums against the double ones.
       EXPECT_LE(c.worstOverBound, 1.0001);
     }
@@ -184,8 +195,8 @@ TEST(TileCuts, SpecularPixelsAreLeftToThemselves) {
   const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
   const GBufferPixels px{kSize, kSize, g.position.data(), g.normal.data(), g.specular.data()};
   const TileCuts cuts = cutter.cut(px, 16, CutRule{}, 1);
-  EXPECT_EQ(cuts.texels[7] & kTilePerPixel, kTilePerPixel);  // the finest square holding it
-  EXPECT_EQ(cuts.texels[8 + 7] & kTilePerPixel, 0u);         // its neighbour shares a cut
+  EXPECT_EQ(cuts.cutOfPixel[0], kNoSharedCut);
+  EXPECT_NE(cuts.cutOfPixel[1], kNoSharedCut);  // its neighbour shares a cut
 }
 
 }  // namespace
