@@ -60,12 +60,9 @@ struct TileCutter::Result {
 TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& lights)
     : colour_(packed.colour) {
   const LightOrder order = lightOrder(lights);  // the light texture's slots
-  spotStart_ = order.spotStart;
-  for (std::size_t slot = std::size_t(order.spotStart); slot < lights.size(); ++slot) {
-    const Light& l = lights[std::size_t(order.scene[slot])];
-    const SpotConeTerms terms = spotConeTerms(l);
-    spotCones_.push_back({l.direction, terms.scale, terms.offset});
-  }
+  std::vector<SpotConeTerms> cones;             // per spot slot, from order.spotStart
+  for (std::size_t slot = std::size_t(order.spotStart); slot < lights.size(); ++slot)
+    cones.push_back(spotConeTerms(lights[std::size_t(order.scene[slot])]));
   int slots = 0;
   for (int t = 0; t < 3; ++t) {
     leaves_[t] = packed.leaves[t];
@@ -76,11 +73,25 @@ TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& ligh
       slots = std::max(slots, node(t, i).representative + 1);
     }
   }
-  leafOfSlot_.assign(std::size_t(slots), -1);
+  // Each node carries its representative's light, so that an estimate reads no second node.
+  std::vector<int> leafOfSlot(std::size_t(slots), -1);
   for (int t = 0; t < 3; ++t) {
     for (int i = leaves_[t] - 1; i < 2 * leaves_[t] - 1; ++i) {
       const int slot = node(t, i).representative;
-      if (slot >= 0) leafOfSlot_[std::size_t(slot)] = i;
+      if (slot >= 0) leafOfSlot[std::size_t(slot)] = i;
+    }
+    for (Node& n : nodes_[t]) {
+      if (n.representative < 0) continue;
+      const Node& l = node(t, leafOfSlot[std::size_t(n.representative)]);
+      n.repPoint = l.boxMin;
+      n.repInvRange2 = l.invRange2;
+      n.repAxis = l.axis;
+      n.repCos = l.w2;
+      if (t == 2) {
+        const SpotConeTerms& cone = cones[std::size_t(n.representative - order.spotStart)];
+        n.repConeScale = cone.scale;
+        n.repConeOffset = cone.offset;
+      }
     }
   }
 }
@@ -267,17 +278,15 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
   };
   // The representative's shading at the centre per unit albedo and intensity.
   auto unitEstimate = [&](int tree, const Node& n) {
-    const int leaf = leafOfSlot_[std::size_t(n.representative)];
-    const Node& l = node(tree, leaf);
     float e;
     if (tree == 0) {
-      e = std::max(glm::dot(g.axis, l.boxMin), 0.0f);
+      e = std::max(glm::dot(g.axis, n.repPoint), 0.0f);
     } else {
-      const glm::vec3 v = l.boxMin - centre;
+      const glm::vec3 v = n.repPoint - centre;
       const float d2 = std::max(glm::dot(v, v), kMinDistanceSquared);
       const glm::vec3 dir = v / std::sqrt(d2);
-      e = std::max(glm::dot(g.axis, dir), 0.0f) * window(d2, l.invRange2) / d2;
-      if (tree == 2 && glm::dot(l.axis, -dir) < l.w2) e = 0.0f;
+      e = std::max(glm::dot(g.axis, dir), 0.0f) * window(d2, n.repInvRange2) / d2;
+      if (tree == 2 && glm::dot(n.repAxis, -dir) < n.repCos) e = 0.0f;
     }
     return e / kPi;
   };
@@ -408,21 +417,21 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     if (it.dark) continue;
     if (!it.leaf)
       result.check = rule.total ? result.check + it.error : glm::max(result.check, it.error);
-    const Node& l = node(it.tree, leafOfSlot_[std::size_t(it.representative)]);
+    const Node& l = node(it.tree, it.index);  // its representative's light: l.rep…
     if (it.tree == 2) {
-      const SpotCone& cone = spotCone(it.representative);
-      if (!spotFullOver(cone.axis, cone.scale, cone.offset, l.boxMin, g.pMin, g.pMax)) continue;
+      if (!spotFullOver(l.repAxis, l.repConeScale, l.repConeOffset, l.repPoint, g.pMin, g.pMax))
+        continue;
     }
     float t = 0.0f;
     if (it.tree == 0) {
-      if (widenDown(glm::dot(g.axis, l.boxMin), g.cosSpread, g.sinSpread) <= 0.0f) continue;
+      if (widenDown(glm::dot(g.axis, l.repPoint), g.cosSpread, g.sinSpread) <= 0.0f) continue;
     } else {
-      const glm::vec3 dMin = l.boxMin - g.pMax, dMax = l.boxMin - g.pMin;
+      const glm::vec3 dMin = l.repPoint - g.pMax, dMax = l.repPoint - g.pMin;
       const glm::vec2 d2 = lengths2(dMin, dMax);
       if (d2.x <= 0.0f ||
           lowestCosine(dMin, dMax, std::sqrt(d2.y), sphereCosines(g.axis, dMin, dMax).y) <= 0.0f)
         continue;
-      t = float(linearisationBound(d2.x, l.invRange2, h2));
+      t = float(linearisationBound(d2.x, l.repInvRange2, h2));
     }
     foldable.push_back({k, it.intensity * t});
   }
@@ -452,26 +461,26 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
   for (const int k : settled) {
     const Item& it = items[std::size_t(k)];
     if (it.dark) continue;  // contributes nothing anywhere in the tile
-    const Node& l = node(it.tree, leafOfSlot_[std::size_t(it.representative)]);
+    const Node& l = node(it.tree, it.index);
     if (folded[std::size_t(k)]) {
       if (it.tree == 0) {
-        far.addDirectional(l.boxMin, it.intensity);
+        far.addDirectional(l.repPoint, it.intensity);
       } else {  // a spot folds only where its cone lets all light through: a point light there
-        far.addPoint(l.boxMin, l.invRange2, it.intensity);
+        far.addPoint(l.repPoint, l.repInvRange2, it.intensity);
       }
       continue;
     }
     // The representative itself: direction or position, and 1/range²; a spot's cone; the
     // node's intensity.
     std::vector<std::uint32_t>& e = byTree[it.tree];
-    for (const float w : {l.boxMin.x, l.boxMin.y, l.boxMin.z, it.tree == 0 ? 0.0f : l.invRange2})
+    for (const float w :
+         {l.repPoint.x, l.repPoint.y, l.repPoint.z, it.tree == 0 ? 0.0f : l.repInvRange2})
       e.push_back(floatToBits(w));
     float coneOffset = 0.0f;
     if (it.tree == 2) {
-      const SpotCone& cone = spotCone(it.representative);
-      for (const float w : {cone.axis.x, cone.axis.y, cone.axis.z, cone.scale})
+      for (const float w : {l.repAxis.x, l.repAxis.y, l.repAxis.z, l.repConeScale})
         e.push_back(floatToBits(w));
-      coneOffset = cone.offset;
+      coneOffset = l.repConeOffset;
     }
     for (const float w : {it.intensity.x, it.intensity.y, it.intensity.z, coneOffset})
       e.push_back(floatToBits(w));

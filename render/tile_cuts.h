@@ -89,12 +89,11 @@ class TileCutter {
     int representative;
     float invRange2, w2, sinTheta = 0.0f;
     bool leaf;
-  };
-  // A spot's cone as the light texture holds it: smoothstep(clamp(cos · scale + offset)),
-  // cos to the axis (the way it shines).
-  struct SpotCone {
-    glm::vec3 axis;
-    float scale, offset;
+    // Its representative's light, as its leaf holds it: position (direction), 1/range²; a
+    // spot's axis (the way it shines) and cos θ, and its cone as the light texture holds it,
+    // smoothstep(clamp(cos · scale + offset)) of the cosine to the axis.
+    glm::vec3 repPoint{0.0f}, repAxis{0.0f};
+    float repInvRange2 = 0.0f, repCos = 0.0f, repConeScale = 0.0f, repConeOffset = 0.0f;
   };
   struct Result;
   const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
@@ -105,10 +104,6 @@ class TileCutter {
   std::vector<Node> nodes_[3];  // per tree
   int leaves_[3];
   NodeColourCoder colour_;
-  std::vector<int> leafOfSlot_;  // light texture slot → its leaf node in its tree
-  const SpotCone& spotCone(int slot) const { return spotCones_[std::size_t(slot - spotStart_)]; }
-  std::vector<SpotCone> spotCones_;  // per spot slot, from spotStart_
-  int spotStart_ = 0;
 };
 
 }  // namespace manylight
