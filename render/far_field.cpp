@@ -1,5 +1,7 @@
 #include "render/far_field.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "scene/shading_model.h"
@@ -20,9 +22,10 @@ void writeTexel(std::vector<std::uint32_t>& words, glm::dvec3 v) {
 
 }  // namespace
 
-double linearisationBound(double rMin2, double invRange2, double h2) {
-  const double a = invRange2;
-  const double secondDerivative = 6.0 / (rMin2 * rMin2) + 15.4 * a / rMin2 + 32.0 * a * a;
+double linearisationBound(double rMin2, double invRange2, double h2, double coneScale) {
+  const double a = invRange2, k = coneScale;
+  const double secondDerivative =
+      (6.0 + k * (8.13 + 6.0 * k)) / (rMin2 * rMin2) + (15.4 + 9.24 * k) * a / rMin2 + 32.0 * a * a;
   return 0.5 * secondDerivative * h2 / shading::kPi;
 }
 
@@ -32,17 +35,39 @@ void FarField::addDirectional(glm::vec3 towards, glm::vec3 intensity) {
 }
 
 void FarField::addPoint(glm::vec3 position, float invRange2, glm::vec3 intensity) {
+  add(position, invRange2, nullptr, intensity);
+}
+
+void FarField::addSpot(glm::vec3 position, float invRange2, const Cone& cone, glm::vec3 intensity) {
+  add(position, invRange2, &cone, intensity);
+}
+
+void FarField::add(glm::vec3 position, float invRange2, const Cone* cone, glm::vec3 intensity) {
   // f(c) = W(s) v / r³ and Df(c) = −(2 W'(s) v vᵀ + W (I − 3 v vᵀ / r²)) / r³, v = p − c,
   // s = r² (far_field.h); W = (1 − x²)² with x = a·s, W' = −4a·x(1 − x²), both 0 for x ≥ 1.
   const glm::dvec3 v = glm::dvec3(position) - centre_;
   const double s = glm::dot(v, v);
-  const double r3 = s * std::sqrt(s);
+  const double r = std::sqrt(s), r3 = s * r;
   const double a = invRange2, x = a * s;
   const double w = x < 1.0 ? (1.0 - x * x) * (1.0 - x * x) : 0.0;
   const double dw = x < 1.0 ? -4.0 * a * x * (1.0 - x * x) : 0.0;
   const glm::dmat3 vv = glm::outerProduct(v, v);
-  const glm::dvec3 value = w * v / r3;
-  const glm::dmat3 jacobian = -(2.0 * dw * vv + w * (glm::dmat3(1.0) - 3.0 * vv / s)) / r3;
+  glm::dvec3 value = w * v / r3;
+  glm::dmat3 jacobian = -(2.0 * dw * vv + w * (glm::dmat3(1.0) - 3.0 * vv / s)) / r3;
+  if (cone) {
+    // S f with S = σ(t), t = clamp(k·(axis·u) + o, 0, 1), u = −v/r the way the light goes to
+    // c, σ(t) = t²(3 − 2t): D(S f) = S Df + f ∇Sᵀ, ∇S = σ'(t)·k·(axis − (axis·u) u)/r, and
+    // σ' = 6t(1 − t) is 0 where the clamp acts.
+    const glm::dvec3 u = -v / r, axis(cone->axis);
+    const double cosine = glm::dot(axis, u);
+    const double tRaw = double(cone->scale) * cosine + double(cone->offset);
+    const double t = std::clamp(tRaw, 0.0, 1.0);
+    const double sigma = t * t * (3.0 - 2.0 * t);
+    const double slope = tRaw > 0.0 && tRaw < 1.0 ? 6.0 * t * (1.0 - t) : 0.0;
+    const glm::dvec3 gradient = slope * double(cone->scale) * (axis - cosine * u) / r;
+    jacobian = sigma * jacobian + glm::outerProduct(value, gradient);
+    value *= sigma;
+  }
   for (int c = 0; c < 3; ++c) {
     f_[std::size_t(c)] += double(intensity[c]) * value;
     j_[std::size_t(c)] += double(intensity[c]) * jacobian;

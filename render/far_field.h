@@ -1,6 +1,6 @@
 #pragma once
-// The far field of a shared tile cut (render/tile_cuts.h): the cut's directional and point
-// entries that light every pixel of the tile from in front, folded into one function of
+// The far field of a shared tile cut (render/tile_cuts.h): the cut's directional, point and
+// spot entries that light every pixel of the tile from in front, folded into one function of
 // the pixel that is linear in its position and normal, so a pixel evaluates them all at
 // the cost of about six entries.
 //
@@ -21,6 +21,16 @@
 // h the half-diagonal of the tile's box, and the tile's bounds (U, B) take T in with the
 // node's own bound: the total rule's guarantee is kept.
 //
+// A spot entry is S f, S = σ(t) its cone, t = clamp(k·(axis·u) + o, 0, 1) with u the unit
+// vector from the light to x, σ(t) = t²(3 − 2t): C¹ (σ' is 0 where the clamp acts) with
+// |σ| ≤ 1, |σ'| ≤ 1.5, |σ''| ≤ 6. Along a direction d, D(axis·u)·d ≤ 1/r, and the
+// second derivative of axis·u is −c·β² − 2s·γ·αβ over r² (d = α u + β w, axis = c u + s e,
+// γ = e·w), at most √2/r². With |f| ≤ 1/r² and |Df·d| ≤ 2/r³ + 3.08·a/r:
+//   ‖D²(S f)‖ ≤ |D²S| |f| + 2 |DS| |Df| + ‖D²f‖
+//            ≤ (6 + 8.13·k + 6·k²)/r⁴ + (15.4 + 9.24·k)·a/r² + 32·a².
+// A spot whose cone lets all its light through to the whole tile has S ≡ 1 there and
+// folds as a point light; one with a hard edge (k infinite) does not fold.
+//
 // Texels (4 words, float bits), kFarFieldTexels of them: c; F per channel R, G, B; then
 // per channel the three columns of J.
 #include <array>
@@ -34,8 +44,9 @@ inline constexpr int kFarFieldTexels = 13;
 
 // The per-unit-albedo linearisation bound T per unit intensity (multiply by I), for a point
 // light whose nearest distance² to the tile's box is rMin2, over a box of half-diagonal²
-// h2.
-double linearisationBound(double rMin2, double invRange2, double h2);
+// h2; for a spot, with its cone's scale k (0: a point light, or a spot whose cone lets all
+// its light through to the whole box).
+double linearisationBound(double rMin2, double invRange2, double h2, double coneScale = 0.0);
 
 class FarField {
  public:
@@ -44,12 +55,22 @@ class FarField {
   void addDirectional(glm::vec3 towards, glm::vec3 intensity);
   // A point entry at `position` with 1/range² (0: none) and intensity (candela, RGB).
   void addPoint(glm::vec3 position, float invRange2, glm::vec3 intensity);
+  // A spot's cone as the light texture holds it: smoothstep(clamp(cos · scale + offset)),
+  // cos to the axis (the way it shines).
+  struct Cone {
+    glm::vec3 axis;
+    float scale, offset;
+  };
+  // A spot entry: a point entry times its cone.
+  void addSpot(glm::vec3 position, float invRange2, const Cone& cone, glm::vec3 intensity);
   bool empty() const { return count_ == 0; }
   int count() const { return count_; }
   // Appends the kFarFieldTexels texels.
   void write(std::vector<std::uint32_t>& words) const;
 
  private:
+  void add(glm::vec3 position, float invRange2, const Cone* cone, glm::vec3 intensity);
+
   glm::dvec3 centre_;
   std::array<glm::dvec3, 3> f_{};  // per channel
   std::array<glm::dmat3, 3> j_{glm::dmat3(0.0), glm::dmat3(0.0), glm::dmat3(0.0)};

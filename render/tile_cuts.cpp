@@ -397,7 +397,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
   }
   for (const auto& [measure, k] : heap) settled.push_back(k);
 
-  // The far field: directional and point entries lighting every pixel of the tile from in
+  // The far field: directional, point and spot entries lighting every pixel of the tile from in
   // front, folded into one linear function while the rule keeps a margin (far_field.h).
   // Under the node rule an entry folds when its bound plus T stays within the margin the
   // cut stopped at; under the total rule the smallest T fold first while the summed bound
@@ -406,6 +406,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
   struct Foldable {
     int item;
     glm::vec3 t;                               // T per channel
+    bool cone;                                 // a spot folding with its cone
     bool operator<(const Foldable& o) const {  // smallest T first
       return std::make_pair(maxOf(t), item) < std::make_pair(maxOf(o.t), o.item);
     }
@@ -418,10 +419,11 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     if (!it.leaf)
       result.check = rule.total ? result.check + it.error : glm::max(result.check, it.error);
     const Node& l = node(it.tree, it.index);  // its representative's light: l.rep…
-    if (it.tree == 2) {
-      if (!spotFullOver(l.repAxis, l.repConeScale, l.repConeOffset, l.repPoint, g.pMin, g.pMax))
-        continue;
-    }
+    // A spot whose cone lets all its light through to the whole tile folds as a point light;
+    // any other with its cone, at a larger T.
+    const bool cone = it.tree == 2 && !spotFullOver(l.repAxis, l.repConeScale, l.repConeOffset,
+                                                    l.repPoint, g.pMin, g.pMax);
+    if (cone && !std::isfinite(l.repConeScale)) continue;  // a hard edge: not smooth
     float t = 0.0f;
     if (it.tree == 0) {
       if (widenDown(glm::dot(g.axis, l.repPoint), g.cosSpread, g.sinSpread) <= 0.0f) continue;
@@ -431,26 +433,26 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
       if (d2.x <= 0.0f ||
           lowestCosine(dMin, dMax, std::sqrt(d2.y), sphereCosines(g.axis, dMin, dMax).y) <= 0.0f)
         continue;
-      t = float(linearisationBound(d2.x, l.repInvRange2, h2));
+      t = float(linearisationBound(d2.x, l.repInvRange2, h2, cone ? l.repConeScale : 0.0f));
     }
-    foldable.push_back({k, it.intensity * t});
+    foldable.push_back({k, it.intensity * t, cone});
   }
-  thread_local std::vector<bool> folded;
-  folded.assign(items.size(), false);
+  thread_local std::vector<std::uint8_t> folded;  // 0 no, 1 yes, 2 with its cone
+  folded.assign(items.size(), 0);
   if (rule.total) {
     std::sort(foldable.begin(), foldable.end());
     for (const Foldable& f : foldable) {
       const glm::vec3 b = result.check + f.t;
       if (maxOf(b) > kFoldMargin * rule.error * maxOf(sum - b)) break;
       result.check = b;
-      folded[std::size_t(f.item)] = true;
+      folded[std::size_t(f.item)] = f.cone ? 2 : 1;
     }
   } else {
     for (const Foldable& f : foldable) {
       const glm::vec3 b = items[std::size_t(f.item)].error + f.t;
       if (maxOf(b) > kMargin * rule.error * maxOf(sum)) continue;
       result.check = glm::max(result.check, b);
-      folded[std::size_t(f.item)] = true;
+      folded[std::size_t(f.item)] = f.cone ? 2 : 1;
     }
   }
 
@@ -465,7 +467,10 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     if (folded[std::size_t(k)]) {
       if (it.tree == 0) {
         far.addDirectional(l.repPoint, it.intensity);
-      } else {  // a spot folds only where its cone lets all light through: a point light there
+      } else if (folded[std::size_t(k)] == 2) {
+        far.addSpot(l.repPoint, l.repInvRange2, {l.repAxis, l.repConeScale, l.repConeOffset},
+                    it.intensity);
+      } else {  // a point light, or a spot whose cone lets all its light through here
         far.addPoint(l.repPoint, l.repInvRange2, it.intensity);
       }
       continue;

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <map>
 
+#include "bake/light_pack.h"
 #include "bake/light_tree.h"
 #include "bake/light_tree_pack.h"
 #include "render/far_field.h"
@@ -61,6 +62,21 @@ float bitsToFloat(std::uint32_t w) {
   return f;
 }
 
+// A far field's irradiance at (p, n) from its texels at `e`, as the shader takes it: per
+// channel n · (F + J (x − c)).
+glm::dvec3 farFieldIrradiance(const std::uint32_t* e, glm::dvec3 p, glm::dvec3 n) {
+  auto texel = [&](int k) {
+    return glm::dvec3(bitsToFloat(e[4 * k]), bitsToFloat(e[4 * k + 1]), bitsToFloat(e[4 * k + 2]));
+  };
+  const glm::dvec3 d = p - texel(0);
+  glm::dvec3 out;
+  for (int ch = 0; ch < 3; ++ch) {
+    const glm::dmat3 j(texel(4 + 3 * ch), texel(5 + 3 * ch), texel(6 + 3 * ch));
+    out[ch] = glm::dot(n, texel(1 + ch) + j * d);
+  }
+  return out;
+}
+
 // Per unit albedo: the exact radiance of all lights at (p, n), and of a light per unit
 // colour · intensity.
 glm::dvec3 unitRadiance(Light light, glm::dvec3 p, glm::dvec3 n) {
@@ -110,16 +126,7 @@ Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tile
         exact += unitRadiance(l, p, n) * glm::dvec3(l.colour) * double(l.intensity);
       const std::uint32_t* e = cuts.texels.data() + std::size_t(head[0]) * 4;
       if (head[7] > 0) {
-        // The far field, as the shader takes it: per channel n · (F + J (x − c)) / π.
-        auto texel = [&](int k) {
-          return glm::dvec3(bitsToFloat(e[4 * k]), bitsToFloat(e[4 * k + 1]),
-                            bitsToFloat(e[4 * k + 2]));
-        };
-        const glm::dvec3 d = p - texel(0);
-        for (int ch = 0; ch < 3; ++ch) {
-          const glm::dmat3 j(texel(4 + 3 * ch), texel(5 + 3 * ch), texel(6 + 3 * ch));
-          estimate[ch] += glm::dot(n, texel(1 + ch) + j * d) / shading::kPi;
-        }
+        estimate += farFieldIrradiance(e, p, n) / shading::kPi;
         e += 4 * kFarFieldTexels;
         ++c.farFieldPixels;
       }
@@ -184,6 +191,50 @@ TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
       EXPECT_EQ(c.mixedSurfaces, 0);
       // The bound itself, with 1e-4 for its single-precision sums against the double ones.
       EXPECT_LE(c.worstOverBound, 1.0001);
+    }
+  }
+}
+
+// A spot folded with its cone: the far field is its first-order expansion (error of
+// second order, which a wrong Jacobian would not be) and within the linearisation bound.
+TEST(FarField, SpotWithItsConeIsItsFirstOrderExpansion) {
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {0.3f, 3.0f, -0.2f};
+  spot.outerConeAngle = 0.6f;
+  spot.innerConeAngle = 0.3f;
+  const glm::dvec3 c(0.9, 0.0, 0.0);
+  // Pointing 0.45 rad away from c: c lies in the band between the cones.
+  const glm::dvec3 w = glm::normalize(c - glm::dvec3(spot.position));
+  const glm::dvec3 e = glm::normalize(glm::cross(w, glm::dvec3(0.0, 0.0, 1.0)));
+  spot.direction = glm::vec3(std::cos(0.45) * w + std::sin(0.45) * e);
+  spot.range = 6.0f;
+  const SpotConeTerms cone = spotConeTerms(spot);
+  const double cosine =
+      glm::dot(glm::dvec3(spot.direction), glm::normalize(c - glm::dvec3(spot.position)));
+  const double t = cosine * cone.scale + cone.offset;
+  ASSERT_GT(t, 0.1);
+  ASSERT_LT(t, 0.9);
+  FarField far(c);
+  far.addSpot(spot.position, 1.0f / (spot.range * spot.range),
+              {spot.direction, cone.scale, cone.offset}, glm::vec3(1.0f));
+  std::vector<std::uint32_t> words;
+  far.write(words);
+  const double h = 0.3;  // half-diagonal of the box the offsets stay in
+  const glm::dvec3 boxMin = c - glm::dvec3(h / std::sqrt(3.0)), boxMax = 2.0 * c - boxMin;
+  const glm::dvec3 nearest = glm::clamp(glm::dvec3(spot.position), boxMin, boxMax);
+  const double rMin2 =
+      glm::dot(nearest - glm::dvec3(spot.position), nearest - glm::dvec3(spot.position));
+  const double bound =
+      linearisationBound(rMin2, 1.0 / (spot.range * spot.range), h * h, cone.scale) * shading::kPi;
+  const glm::dvec3 n = glm::normalize(glm::dvec3(0.1, 1.0, -0.2));
+  for (const glm::dvec3 dir : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1),
+                               glm::normalize(glm::dvec3(1, -1, 1))}) {
+    for (const double delta : {1e-3, 0.1, h / std::sqrt(3.0)}) {
+      const glm::dvec3 x = c + delta * dir;
+      const double exact = unitRadiance(spot, x, n).x * shading::kPi;
+      const double error = std::abs(farFieldIrradiance(words.data(), x, n).x - exact);
+      EXPECT_LE(error, bound * (delta * delta) / (h * h) + 1e-6 * exact) << delta;
     }
   }
 }
