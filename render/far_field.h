@@ -23,11 +23,15 @@
 //
 // A spot entry is S f, S = σ(t) its cone, t = clamp(k·(axis·u) + o, 0, 1) with u the unit
 // vector from the light to x, σ(t) = t²(3 − 2t): C¹ (σ' is 0 where the clamp acts) with
-// |σ| ≤ 1, |σ'| ≤ 1.5, |σ''| ≤ 6. Along a direction d, D(axis·u)·d ≤ 1/r, and the
-// second derivative of axis·u is −c·β² − 2s·γ·αβ over r² (d = α u + β w, axis = c u + s e,
-// γ = e·w), at most √2/r². With |f| ≤ 1/r² and |Df·d| ≤ 2/r³ + 3.08·a/r:
+// |σ| ≤ 1, and S is constant where the clamp acts, so only points between the inner and
+// outer cone count: there t lies in [t₀, t₁], the range over the box, with |σ'| = 6t(1 − t)
+// ≤ σ'₁ (1.5 at most) and |σ''| = |6 − 12t| ≤ σ''₁ (6 at most), at an angle ψ from the axis
+// whose sine is ≤ sin θ (θ the smaller of the outer angle and the box's farthest angle, up
+// to π/2). Along a direction d, |D(axis·u)·d| ≤ sin ψ/r ≤ sin θ/r, and the second
+// derivative of axis·u is −c·β² − 2s·γ·αβ over r² (d = α u + β w, axis = c u + s e,
+// γ = e·w), at most √2/r². With |f| ≤ 1/r², |Df·d| ≤ 2/r³ + 3.08·a/r and q = k·sin θ:
 //   ‖D²(S f)‖ ≤ |D²S| |f| + 2 |DS| |Df| + ‖D²f‖
-//            ≤ (6 + 8.13·k + 6·k²)/r⁴ + (15.4 + 9.24·k)·a/r² + 32·a².
+//            ≤ (6 + 1.415·σ'₁·k + 4·σ'₁·q + σ''₁·q²)/r⁴ + (15.4 + 6.16·σ'₁·q)·a/r² + 32·a².
 // A spot whose cone lets all its light through to the whole tile has S ≡ 1 there and
 // folds as a point light; one with a hard edge (k infinite) does not fold.
 //
@@ -42,11 +46,22 @@ namespace manylight {
 
 inline constexpr int kFarFieldTexels = 13;
 
+// How a spot's cone S = σ(t), t = clamp(k·cos + o, 0, 1), varies over a box: its scale k,
+// the largest sine to the axis where S varies, and the largest |σ'| and |σ''| there.
+struct ConeVariation {
+  double scale = 0.0, sine = 1.0, slope = 1.5, curvature = 6.0;
+  bool constant = false;  // S is one value over the box
+  bool full = false;      // S = 1 over the box (with a margin for the shader's rounding)
+};
+// From the cone's scale k and offset o, the cosine of its outer angle, and the lowest and
+// highest cosine to its axis over the box (region_bounds.h axisCosines).
+ConeVariation coneVariation(float scale, float offset, float outerCos, glm::vec2 cosines);
+
 // The per-unit-albedo linearisation bound T per unit intensity (multiply by I), for a point
 // light whose nearest distance² to the tile's box is rMin2, over a box of half-diagonal²
-// h2; for a spot, with its cone's scale k (0: a point light, or a spot whose cone lets all
-// its light through to the whole box).
-double linearisationBound(double rMin2, double invRange2, double h2, double coneScale = 0.0);
+// h2; for a spot whose cone varies over the box, with `cone`.
+double linearisationBound(double rMin2, double invRange2, double h2,
+                          const ConeVariation* cone = nullptr);
 
 class FarField {
  public:

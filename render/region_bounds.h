@@ -87,22 +87,20 @@ inline bool spotMayReach(glm::vec3 boxMin, glm::vec3 boxMax, glm::vec3 axis, flo
   return glm::dot(axis, toP) / d >= cosSum;
 }
 
-// Whether a spot at `position` whose cone is smoothstep(clamp(cos · scale + offset)), cos
-// to `axis`, lets all its light through (the smoothstep reaches 1, with a margin for the
-// shader's rounding) to every point of the box [pMin, pMax]: the angle from the axis to the
-// box's bounding sphere, seen from the light, plus the sphere's angular radius.
-inline bool spotFullOver(glm::vec3 axis, float scale, float offset, glm::vec3 position,
-                         glm::vec3 pMin, glm::vec3 pMax) {
-  if (scale <= 0.0f) return false;
-  const float full = (1.0f - offset) / scale + 1e-5f;
+// The lowest and highest cosine between `axis` and a direction from `position` to a point
+// of the box [pMin, pMax] (its bounding sphere): cos(ψ + α) and cos(max(ψ − α, 0)), ψ the
+// angle to the sphere's centre and α its angular radius; (−1, 1) when `position` is inside.
+inline glm::vec2 axisCosines(glm::vec3 axis, glm::vec3 position, glm::vec3 pMin, glm::vec3 pMax) {
   const glm::vec3 w = 0.5f * (pMin + pMax) - position;
   const float d = glm::length(w);
   const float r = 0.5f * glm::length(pMax - pMin);
-  if (d <= r) return false;
+  if (d <= r) return {-1.0f, 1.0f};
   const float cosW = glm::dot(axis, w) / d;
   const float sinW = std::sqrt(std::max(1.0f - cosW * cosW, 0.0f));
   const float sinA = r / d, cosA = std::sqrt(std::max(1.0f - sinA * sinA, 0.0f));
-  return cosW > 0.0f && cosW * cosA - sinW * sinA >= full;
+  const float low = sinW * cosA + cosW * sinA < 0.0f ? -1.0f : cosW * cosA - sinW * sinA;
+  const float high = cosW >= cosA ? 1.0f : cosW * cosA + sinW * sinA;
+  return {low, high};
 }
 
 }  // namespace manylight::region_bounds

@@ -421,9 +421,13 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     const Node& l = node(it.tree, it.index);  // its representative's light: l.rep…
     // A spot whose cone lets all its light through to the whole tile folds as a point light;
     // any other with its cone, at a larger T.
-    const bool cone = it.tree == 2 && !spotFullOver(l.repAxis, l.repConeScale, l.repConeOffset,
-                                                    l.repPoint, g.pMin, g.pMax);
-    if (cone && !std::isfinite(l.repConeScale)) continue;  // a hard edge: not smooth
+    ConeVariation variation;
+    if (it.tree == 2) {
+      if (!std::isfinite(l.repConeScale)) continue;  // a hard edge: not smooth
+      variation = coneVariation(l.repConeScale, l.repConeOffset, l.repCos,
+                                axisCosines(l.repAxis, l.repPoint, g.pMin, g.pMax));
+    }
+    const bool cone = it.tree == 2 && !variation.full;
     float t = 0.0f;
     if (it.tree == 0) {
       if (widenDown(glm::dot(g.axis, l.repPoint), g.cosSpread, g.sinSpread) <= 0.0f) continue;
@@ -433,7 +437,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
       if (d2.x <= 0.0f ||
           lowestCosine(dMin, dMax, std::sqrt(d2.y), sphereCosines(g.axis, dMin, dMax).y) <= 0.0f)
         continue;
-      t = float(linearisationBound(d2.x, l.repInvRange2, h2, cone ? l.repConeScale : 0.0f));
+      t = float(linearisationBound(d2.x, l.repInvRange2, h2, cone ? &variation : nullptr));
     }
     foldable.push_back({k, it.intensity * t, cone});
   }

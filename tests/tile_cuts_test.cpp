@@ -13,6 +13,7 @@
 #include "bake/light_tree.h"
 #include "bake/light_tree_pack.h"
 #include "render/far_field.h"
+#include "render/region_bounds.h"
 #include "scene/light_layouts.h"
 #include "scene/shading_model.h"
 
@@ -225,8 +226,13 @@ TEST(FarField, SpotWithItsConeIsItsFirstOrderExpansion) {
   const glm::dvec3 nearest = glm::clamp(glm::dvec3(spot.position), boxMin, boxMax);
   const double rMin2 =
       glm::dot(nearest - glm::dvec3(spot.position), nearest - glm::dvec3(spot.position));
+  const ConeVariation variation =
+      coneVariation(cone.scale, cone.offset, std::cos(spot.outerConeAngle),
+                    region_bounds::axisCosines(spot.direction, spot.position, glm::vec3(boxMin),
+                                               glm::vec3(boxMax)));
+  ASSERT_FALSE(variation.constant);
   const double bound =
-      linearisationBound(rMin2, 1.0 / (spot.range * spot.range), h * h, cone.scale) * shading::kPi;
+      linearisationBound(rMin2, 1.0 / (spot.range * spot.range), h * h, &variation) * shading::kPi;
   const glm::dvec3 n = glm::normalize(glm::dvec3(0.1, 1.0, -0.2));
   for (const glm::dvec3 dir : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1),
                                glm::normalize(glm::dvec3(1, -1, 1))}) {
