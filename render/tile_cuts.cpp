@@ -346,11 +346,17 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
   };
 
   // The cut: items refined no further (leaves, empty and dark nodes) and a max-heap of the
-  // others by measure, as (measure, item) pairs.
+  // others by measure.
   // Kept per thread between tiles: allocating them per tile costs more than the cut.
   thread_local std::vector<Item> items;
   thread_local std::vector<int> settled;
-  thread_local std::vector<std::pair<float, int>> heap;
+  // A heap entry is one word, the measure's bits above the item's index: positive floats
+  // (and +inf) order as their bits do, so this orders as (measure, index) pairs would, with
+  // one integer comparison.
+  thread_local std::vector<std::uint64_t> heap;
+  auto entry = [](float measure, int k) {
+    return std::uint64_t(floatToBits(measure)) << 32 | std::uint32_t(k);
+  };
   items.clear();
   settled.clear();
   heap.clear();
@@ -362,7 +368,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     items.push_back(it);
     const int k = int(items.size()) - 1;
     if (it.measure > 0.0f) {
-      heap.emplace_back(it.measure, k);
+      heap.push_back(entry(it.measure, k));
       std::push_heap(heap.begin(), heap.end());
     } else {
       settled.push_back(k);
@@ -372,7 +378,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     if (leaves_[t] > 0) add(makeItem(t, 0, nullptr));
   }
   while (!heap.empty()) {
-    const float top = heap.front().first;
+    const float top = bitsToFloat(std::uint32_t(heap.front() >> 32));
     if (std::isfinite(top)) {
       const bool holds = rule.total
                              ? (maxOf(errorSum) <= kMargin * rule.error * maxOf(sum - errorSum) ||
@@ -388,14 +394,14 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
       return result;
     }
     std::pop_heap(heap.begin(), heap.end());
-    const Item parent = items[std::size_t(heap.back().second)];
+    const Item parent = items[std::size_t(heap.back() & 0xffffffffu)];
     heap.pop_back();
     sum -= parent.estimate;
     if (std::isfinite(parent.measure)) errorSum -= parent.error;
     add(makeItem(parent.tree, 2 * parent.index + 1, &parent));
     add(makeItem(parent.tree, 2 * parent.index + 2, &parent));
   }
-  for (const auto& [measure, k] : heap) settled.push_back(k);
+  for (const std::uint64_t e : heap) settled.push_back(int(e & 0xffffffffu));
 
   // The far field: directional, point and spot entries lighting every pixel of the tile from in
   // front, folded into one linear function while the rule keeps a margin (far_field.h).
