@@ -311,14 +311,19 @@ bool ruleHolds(float largest, vec3 errorSum, vec3 estimate) {
 const float kStep = 32.0;
 
 // The node rule: every node of the cut has an upper bound ≤ ε × the pixel's estimate. Each
-// pass refines against max(ε × the previous estimate, the previous threshold / kStep) and
-// stops once the largest upper bound in its cut is ≤ ε × its own estimate.
+// pass refines against max(kUndershoot · ε × the previous estimate, the previous threshold
+// / kStep) and stops once the largest upper bound in its cut is ≤ ε × its own estimate.
+// Refining to ε × the previous estimate exactly, the rule often failed by a little against
+// the pass's own estimate and a further pass of full size followed: at 0.8, the per-pixel
+// cuts of 65,536 mixed lights take 1,136 node bounds a pixel instead of 1,598, for cuts of
+// 447 nodes instead of 399 (measured from 0.6 to 1.0; 0.8 is the least work).
+const float kUndershoot = 0.8;
 void nodeRuleCut() {
   cutPass(kUnbounded * 0.5, 0);  // the roots (and unbounded nodes below them)
   keepPass();
   float tau = largestMeasure;
   while (passFits()) {
-    tau = max(uError * maxOf(keptEstimate), tau / kStep);
+    tau = max(kUndershoot * uError * maxOf(keptEstimate), tau / kStep);
     cutPass(tau, 0);
     if (atMax) {
       fallBackIfFull();
