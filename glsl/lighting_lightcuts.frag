@@ -48,7 +48,7 @@ uniform vec2 uColourSlack;  // η and ζ of the node colour coding
 
 layout(location = 0) out vec4 oRadiance;
 // x: cut size, y: light evaluations, z: node bound evaluations, w: 1, or 2 where the cut hit
-// uMaxCut, 3 where the pixel took its tile's cut (0 stays on background pixels).
+// uMaxCut, 3 where the pixel took its group's shared cut (0 stays on background pixels).
 layout(location = 1) out vec4 oCutStats;
 
 const float kUnbounded = 3.0e38;

@@ -40,7 +40,7 @@ struct CutStats {
   double averageCut = 0.0;
   int maxCut = 0;
   long long pixelsAtMaxCut = 0;
-  long long pixelsSharedCut = 0;  // pixels that took their tile's cut (render/tile_cuts.h)
+  long long pixelsSharedCut = 0;  // pixels that took their group's cut (render/tile_cuts.h)
   // Groups of pixels with a shared cut, groups left per pixel, and groups split into their
   // surfaces (render/tile_cuts.h).
   int sharedCuts = 0, perPixelGroups = 0, surfaceSplits = 0;

@@ -68,7 +68,7 @@ struct RunRecord {
   double averageCut = 0;
   int largestCut = 0;
   long long pixelsAtMaxCut = 0;
-  long long pixelsSharedCut = 0;  // pixels that took their screen square's cut
+  long long pixelsSharedCut = 0;  // pixels that took their group's shared cut
   double bakeMs = 0;              // light trees built and uploaded
   double peakRssMb = 0;           // the process's peak resident memory while this variant ran
   ImageErrors errors;             // against the reference, on the rows it lit
