@@ -34,9 +34,24 @@
 //
 // Memory per node: 40 bytes (directional, point) and 56 bytes (spot); with the intensity as
 // three floats they were 48 and 64.
+#include <cstdint>
+#include <cstring>
+
 namespace manylight::layout {
 
 inline constexpr int kNodeWords = 10;
+
+// A float as the word that stores it, and back (here and in the tile cuts' texels).
+inline std::uint32_t wordOf(float f) {
+  std::uint32_t w;
+  std::memcpy(&w, &f, sizeof w);
+  return w;
+}
+inline float floatOf(std::uint32_t w) {
+  float f;
+  std::memcpy(&f, &w, sizeof f);
+  return f;
+}
 inline constexpr int kSpotNodeWords = 14;
 
 }  // namespace manylight::layout

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <glm/gtc/constants.hpp>
 
 #include "bake/light_tree_layout.h"
@@ -10,11 +9,7 @@
 namespace manylight {
 namespace {
 
-std::uint32_t bits(float f) {
-  std::uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
+using layout::wordOf;
 
 int typeIndex(LightType type) {
   return type == LightType::Directional ? 0 : type == LightType::Point ? 1 : 2;
@@ -52,23 +47,23 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
     for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
       const LightTreeNode& n = tree.nodes[i];
       std::uint32_t* w = &packed.words[next];
-      w[0] = bits(n.boxMin.x), w[1] = bits(n.boxMin.y), w[2] = bits(n.boxMin.z);
+      w[0] = wordOf(n.boxMin.x), w[1] = wordOf(n.boxMin.y), w[2] = wordOf(n.boxMin.z);
       w[3] = std::uint32_t(n.representative);
       if (int(i) < tree.firstLeaf()) {
-        w[4] = bits(n.boxMax.x), w[5] = bits(n.boxMax.y), w[6] = bits(n.boxMax.z);
+        w[4] = wordOf(n.boxMax.x), w[5] = wordOf(n.boxMax.y), w[6] = wordOf(n.boxMax.z);
         w[8] = packed.colour.encode(n.intensity);
       } else {  // a leaf's box is its light's position: the words hold its exact intensity
-        w[4] = bits(n.intensity.r), w[5] = bits(n.intensity.g), w[6] = bits(n.intensity.b);
+        w[4] = wordOf(n.intensity.r), w[5] = wordOf(n.intensity.g), w[6] = wordOf(n.intensity.b);
       }
-      w[7] = bits(n.invRange2);
-      if (t == 1) w[9] = bits(n.invRange2Max);
+      w[7] = wordOf(n.invRange2);
+      if (t == 1) w[9] = wordOf(n.invRange2Max);
       if (t == 2) {
         // 1e-4 rad of margin covers the float rounding of the cone merges.
         const double theta =
             std::min(double(n.spread) + double(n.outerAngle) + 1e-4, glm::pi<double>());
-        w[9] = bits(float(std::cos(theta)));
-        w[10] = bits(n.axis.x), w[11] = bits(n.axis.y), w[12] = bits(n.axis.z);
-        w[13] = bits(float(std::sin(theta)));
+        w[9] = wordOf(float(std::cos(theta)));
+        w[10] = wordOf(n.axis.x), w[11] = wordOf(n.axis.y), w[12] = wordOf(n.axis.z);
+        w[13] = wordOf(float(std::sin(theta)));
       }
       next += t == 2 ? layout::kSpotNodeWords : layout::kNodeWords;
     }

@@ -2,21 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
+#include "bake/light_tree_layout.h"
 #include "scene/shading_model.h"
 
 namespace manylight {
 namespace {
 
-std::uint32_t floatToBits(float f) {
-  std::uint32_t w;
-  std::memcpy(&w, &f, 4);
-  return w;
-}
-
 void writeTexel(std::vector<std::uint32_t>& words, glm::dvec3 v) {
-  for (int i = 0; i < 3; ++i) words.push_back(floatToBits(float(v[i])));
+  for (int i = 0; i < 3; ++i) words.push_back(layout::wordOf(float(v[i])));
   words.push_back(0u);
 }
 

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <thread>
 
+#include "bake/light_tree_layout.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
 
@@ -34,18 +34,6 @@ constexpr float kFoldMargin = 0.75f;
 // mixed, uniform and clustered lights the cuts and images are the same as without, and
 // 6% fewer bounds are evaluated).
 constexpr float kHopeless = 4.0f;
-
-float bitsToFloat(std::uint32_t w) {
-  float f;
-  std::memcpy(&f, &w, 4);
-  return f;
-}
-
-std::uint32_t floatToBits(float f) {
-  std::uint32_t w;
-  std::memcpy(&w, &f, 4);
-  return w;
-}
 
 float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
@@ -185,8 +173,8 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
       const Result& r = part.cuts[k];
       const std::uint32_t words[8] = {std::uint32_t(next),        std::uint32_t(r.counts[0]),
                                       std::uint32_t(r.counts[1]), std::uint32_t(r.counts[2]),
-                                      floatToBits(r.check.x),     floatToBits(r.check.y),
-                                      floatToBits(r.check.z),     std::uint32_t(r.folded)};
+                                      layout::wordOf(r.check.x),  layout::wordOf(r.check.y),
+                                      layout::wordOf(r.check.z),  std::uint32_t(r.folded)};
       std::copy_n(words, 8, head);
       const std::size_t texels = std::size_t(2 * (r.counts[0] + r.counts[1]) + 3 * r.counts[2] +
                                              (r.folded > 0 ? kFarFieldTexels : 0));
@@ -300,7 +288,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
   // one integer comparison.
   thread_local std::vector<std::uint64_t> heap;
   auto entry = [](float measure, int k) {
-    return std::uint64_t(floatToBits(measure)) << 32 | std::uint32_t(k);
+    return std::uint64_t(layout::wordOf(measure)) << 32 | std::uint32_t(k);
   };
   items.clear();
   settled.clear();
@@ -323,7 +311,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     if (leaves_[t] > 0) add(makeItem(t, 0, nullptr));
   }
   while (!heap.empty()) {
-    const float top = bitsToFloat(std::uint32_t(heap.front() >> 32));
+    const float top = layout::floatOf(std::uint32_t(heap.front() >> 32));
     if (std::isfinite(top)) {
       const bool holds = rule.total
                              ? (maxOf(errorSum) <= kMargin * rule.error * maxOf(sum - errorSum) ||
@@ -437,15 +425,15 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     std::vector<std::uint32_t>& e = byTree[it.tree];
     for (const float w :
          {l.repPoint.x, l.repPoint.y, l.repPoint.z, it.tree == 0 ? 0.0f : l.repInvRange2})
-      e.push_back(floatToBits(w));
+      e.push_back(layout::wordOf(w));
     float coneOffset = 0.0f;
     if (it.tree == 2) {
       for (const float w : {l.repAxis.x, l.repAxis.y, l.repAxis.z, l.repConeScale})
-        e.push_back(floatToBits(w));
+        e.push_back(layout::wordOf(w));
       coneOffset = l.repConeOffset;
     }
     for (const float w : {it.intensity.x, it.intensity.y, it.intensity.z, coneOffset})
-      e.push_back(floatToBits(w));
+      e.push_back(layout::wordOf(w));
   }
   result.folded = far.count();
   if (!far.empty()) far.write(entries);

@@ -1,7 +1,6 @@
 // TileCutter's nodes (render/tile_cuts.h): the packed trees decoded once, each node with
 // its representative's light beside it.
 #include <algorithm>
-#include <cstring>
 
 #include "bake/light_pack.h"
 #include "bake/light_tree_layout.h"
@@ -9,15 +8,7 @@
 
 namespace manylight {
 
-namespace {
-
-float bitsToFloat(std::uint32_t w) {
-  float f;
-  std::memcpy(&f, &w, 4);
-  return f;
-}
-
-}  // namespace
+using layout::floatOf;
 
 TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& lights)
     : colour_(packed.colour) {
@@ -62,17 +53,17 @@ TileCutter::Node TileCutter::decode(const PackedTrees& packed, int tree, int i) 
   const std::uint32_t* w = packed.words.data() + packed.base[tree] +
                            std::size_t(tree == 2 ? layout::kSpotNodeWords : layout::kNodeWords) * i;
   Node n;
-  n.boxMin = {bitsToFloat(w[0]), bitsToFloat(w[1]), bitsToFloat(w[2])};
+  n.boxMin = {floatOf(w[0]), floatOf(w[1]), floatOf(w[2])};
   n.representative = int(w[3]);
-  n.invRange2 = bitsToFloat(w[7]);
+  n.invRange2 = floatOf(w[7]);
   n.leaf = i >= packed.leaves[tree] - 1;
-  const glm::vec3 words46{bitsToFloat(w[4]), bitsToFloat(w[5]), bitsToFloat(w[6])};
+  const glm::vec3 words46{floatOf(w[4]), floatOf(w[5]), floatOf(w[6])};
   n.boxMax = n.leaf ? n.boxMin : words46;
   n.intensity = n.leaf ? words46 : packed.colour.decode(w[8]);
-  n.w2 = bitsToFloat(w[9]);
+  n.w2 = floatOf(w[9]);
   if (tree == 2) {
-    n.axis = {bitsToFloat(w[10]), bitsToFloat(w[11]), bitsToFloat(w[12])};
-    n.sinTheta = bitsToFloat(w[13]);
+    n.axis = {floatOf(w[10]), floatOf(w[11]), floatOf(w[12])};
+    n.sinTheta = floatOf(w[13]);
   }
   return n;
 }

@@ -11,6 +11,7 @@
 
 #include "bake/light_pack.h"
 #include "bake/light_tree.h"
+#include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
@@ -57,17 +58,13 @@ struct SyntheticGBuffer {
   }
 };
 
-float bitsToFloat(std::uint32_t w) {
-  float f;
-  std::memcpy(&f, &w, 4);
-  return f;
-}
+using layout::floatOf;
 
 // A far field's irradiance at (p, n) from its texels at `e`, as the shader takes it: per
 // channel n · (F + J (x − c)).
 glm::dvec3 farFieldIrradiance(const std::uint32_t* e, glm::dvec3 p, glm::dvec3 n) {
   auto texel = [&](int k) {
-    return glm::dvec3(bitsToFloat(e[4 * k]), bitsToFloat(e[4 * k + 1]), bitsToFloat(e[4 * k + 2]));
+    return glm::dvec3(floatOf(e[4 * k]), floatOf(e[4 * k + 1]), floatOf(e[4 * k + 2]));
   };
   const glm::dvec3 d = p - texel(0);
   glm::dvec3 out;
@@ -136,24 +133,24 @@ Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tile
           // The representative: direction or position and 1/range²; a spot's axis and cone
           // (smoothstep of cos · scale + offset); then the node's intensity.
           Light rep;
-          const glm::vec3 a(bitsToFloat(e[0]), bitsToFloat(e[1]), bitsToFloat(e[2]));
+          const glm::vec3 a(floatOf(e[0]), floatOf(e[1]), floatOf(e[2]));
           rep.type = tree == 0   ? LightType::Directional
                      : tree == 1 ? LightType::Point
                                  : LightType::Spot;
           rep.position = a;
           rep.direction = -a;
-          if (bitsToFloat(e[3]) > 0.0f) rep.range = 1.0f / std::sqrt(bitsToFloat(e[3]));
+          if (floatOf(e[3]) > 0.0f) rep.range = 1.0f / std::sqrt(floatOf(e[3]));
           e += 4;
           if (tree == 2) {  // the scene's spot at that position, its cone as given
             rep = lights[spotAt.at({a.x, a.y, a.z})];
             e += 4;
           }
-          estimate += unitRadiance(rep, p, n) *
-                      glm::dvec3(bitsToFloat(e[0]), bitsToFloat(e[1]), bitsToFloat(e[2]));
+          estimate +=
+              unitRadiance(rep, p, n) * glm::dvec3(floatOf(e[0]), floatOf(e[1]), floatOf(e[2]));
           e += 4;
         }
       }
-      const glm::dvec3 bound(bitsToFloat(head[4]), bitsToFloat(head[5]), bitsToFloat(head[6]));
+      const glm::dvec3 bound(floatOf(head[4]), floatOf(head[5]), floatOf(head[6]));
       ++c.sharedPixels;
       for (int ch = 0; ch < 3; ++ch) {
         const double error = std::abs(estimate[ch] - exact[ch]);
