@@ -21,8 +21,7 @@ ConeVariation coneVariation(float scale, float offset, float outerCos, glm::vec2
   v.scale = scale;
   const double t0 = std::clamp(double(scale) * cosines.x + offset, 0.0, 1.0);
   const double t1 = std::clamp(double(scale) * cosines.y + offset, 0.0, 1.0);
-  v.full = scale > 0.0f && double(scale) * (double(cosines.x) - 1e-5) + offset >= 1.0;
-  v.constant = v.full || t1 <= 0.0 || t0 >= 1.0;
+  v.constant = t1 <= 0.0 || t0 >= 1.0;
   if (v.constant) {
     v.slope = v.curvature = 0.0;
     return v;

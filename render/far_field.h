@@ -32,8 +32,8 @@
 // γ = e·w), at most √2/r². With |f| ≤ 1/r², |Df·d| ≤ 2/r³ + 3.08·a/r and q = k·sin θ:
 //   ‖D²(S f)‖ ≤ |D²S| |f| + 2 |DS| |Df| + ‖D²f‖
 //            ≤ (6 + 1.415·σ'₁·k + 4·σ'₁·q + σ''₁·q²)/r⁴ + (15.4 + 6.16·σ'₁·q)·a/r² + 32·a².
-// A spot whose cone lets all its light through to the whole tile has S ≡ 1 there and
-// folds as a point light; one with a hard edge (k infinite) does not fold.
+// Where the cone is constant over the whole tile (all its light through, or none), S f
+// has the point light's bound; a spot with a hard edge (k infinite) does not fold.
 //
 // Texels (4 words, float bits), kFarFieldTexels of them: c; F per channel R, G, B; then
 // per channel the three columns of J.
@@ -51,7 +51,6 @@ inline constexpr int kFarFieldTexels = 13;
 struct ConeVariation {
   double scale = 0.0, sine = 1.0, slope = 1.5, curvature = 6.0;
   bool constant = false;  // S is one value over the box
-  bool full = false;      // S = 1 over the box (with a margin for the shader's rounding)
 };
 // From the cone's scale k and offset o, the cosine of its outer angle, and the lowest and
 // highest cosine to its axis over the box (region_bounds.h axisCosines).

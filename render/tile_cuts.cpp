@@ -52,7 +52,6 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
                          int threads) const {
   TileCuts out;
   const int fine = std::min(kFinestTile, tileSize);
-  out.tileSize = tileSize;
   out.cutOfPixel.assign(std::size_t(px.width) * px.height, kNoSharedCut);
   const int coarseX = (px.width + tileSize - 1) / tileSize;
   const int coarse = coarseX * ((px.height + tileSize - 1) / tileSize);
@@ -94,14 +93,15 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
         todo.pop_back();
         ShadingRegion g;
         const bool cone = shadingRegion(px, group.pixels, g);
+        // Normals over 90° apart leave no cosine bound: split without trying.
+        const bool tried = cone && g.cosSpread >= 0.0f;
         Result result;
         const std::size_t entry = part.entries.size();
-        // Normals over 90° apart leave no cosine bound: split without trying.
-        if (cone && g.cosSpread >= 0.0f) {
+        if (tried) {
           result = cutTile(g, rule, part.entries);
           part.bounds += result.bounds;
         }
-        if (cone && g.cosSpread >= 0.0f && !result.perPixel) {
+        if (tried && !result.perPixel) {
           for (const int i : group.pixels)
             out.cutOfPixel[std::size_t(i)] = std::uint32_t(part.cuts.size());
           part.cuts.push_back(result);
@@ -347,7 +347,6 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
   struct Foldable {
     int item;
     glm::vec3 t;                               // T per channel
-    bool cone;                                 // a spot folding with its cone
     bool operator<(const Foldable& o) const {  // smallest T first
       return std::make_pair(maxOf(t), item) < std::make_pair(maxOf(o.t), o.item);
     }
@@ -360,15 +359,14 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     if (!it.leaf)
       result.check = rule.total ? result.check + it.error : glm::max(result.check, it.error);
     const Node& l = node(it.tree, it.index);  // its representative's light: l.rep…
-    // A spot whose cone lets all its light through to the whole tile folds as a point light;
-    // any other with its cone, at a larger T.
+    // A spot folds with its cone, at a T that grows with how much the cone varies over the
+    // tile (none where it lets all its light through, or none, to the whole tile).
     ConeVariation variation;
     if (it.tree == 2) {
       if (!std::isfinite(l.repConeScale)) continue;  // a hard edge: not smooth
       variation = coneVariation(l.repConeScale, l.repConeOffset, l.repCos,
                                 axisCosines(l.repAxis, l.repPoint, g.pMin, g.pMax));
     }
-    const bool cone = it.tree == 2 && !variation.full;
     float t = 0.0f;
     if (it.tree == 0) {
       if (widenDown(glm::dot(g.axis, l.repPoint), g.cosSpread, g.sinSpread) <= 0.0f) continue;
@@ -378,26 +376,26 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
       if (d2.x <= 0.0f ||
           lowestCosine(dMin, dMax, std::sqrt(d2.y), sphereCosines(g.axis, dMin, dMax).y) <= 0.0f)
         continue;
-      t = float(linearisationBound(d2.x, l.repInvRange2, h2, cone ? &variation : nullptr));
+      t = float(linearisationBound(d2.x, l.repInvRange2, h2, it.tree == 2 ? &variation : nullptr));
     }
-    foldable.push_back({k, it.intensity * t, cone});
+    foldable.push_back({k, it.intensity * t});
   }
-  thread_local std::vector<std::uint8_t> folded;  // 0 no, 1 yes, 2 with its cone
-  folded.assign(items.size(), 0);
+  thread_local std::vector<bool> folded;
+  folded.assign(items.size(), false);
   if (rule.total) {
     std::sort(foldable.begin(), foldable.end());
     for (const Foldable& f : foldable) {
       const glm::vec3 b = result.check + f.t;
       if (maxOf(b) > kFoldMargin * rule.error * maxOf(sum - b)) break;
       result.check = b;
-      folded[std::size_t(f.item)] = f.cone ? 2 : 1;
+      folded[std::size_t(f.item)] = true;
     }
   } else {
     for (const Foldable& f : foldable) {
       const glm::vec3 b = items[std::size_t(f.item)].error + f.t;
       if (maxOf(b) > kMargin * rule.error * maxOf(sum)) continue;
       result.check = glm::max(result.check, b);
-      folded[std::size_t(f.item)] = f.cone ? 2 : 1;
+      folded[std::size_t(f.item)] = true;
     }
   }
 
@@ -412,10 +410,10 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     if (folded[std::size_t(k)]) {
       if (it.tree == 0) {
         far.addDirectional(l.repPoint, it.intensity);
-      } else if (folded[std::size_t(k)] == 2) {
+      } else if (it.tree == 2) {
         far.addSpot(l.repPoint, l.repInvRange2, {l.repAxis, l.repConeScale, l.repConeOffset},
                     it.intensity);
-      } else {  // a point light, or a spot whose cone lets all its light through here
+      } else {
         far.addPoint(l.repPoint, l.repInvRange2, it.intensity);
       }
       continue;

@@ -59,7 +59,6 @@ struct CutRule {
 // A cut belongs to a group of pixels: a square, or the pixels of one surface in a square
 // (render/pixel_groups.h).
 struct TileCuts {
-  int tileSize = 0;                       // the squares the cutter starts from
   std::vector<std::uint32_t> cutOfPixel;  // per pixel
   std::vector<std::uint32_t> texels;      // 4 words each
   long long boundEvaluations = 0;         // on the CPU, all groups together
