@@ -9,7 +9,9 @@
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <thread>
+#include <variant>
 
 #include "app/commands.h"
 #include "render/progress.h"
@@ -62,79 +64,108 @@ nlohmann::json jsonNumber(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
-const char* kColumns =
-    "case,layout,lights,method,mode,error,max_cut,width,height,repeats,render_ms,render_ms_min,"
-    "render_ms_max,ratio_to_reference,ratio_to_floor,floor_ms,light_evals_per_px,"
-    "node_evals_per_px,avg_cut,largest_cut,pixels_at_max_cut,pixels_shared_cut,bake_ms,peak_rss_mb,"
-    "pixels_compared,non_finite_pixels,max_rel_error,p99_rel_error,max_abs_error,rmse_8bit,"
-    "psnr_8bit,share_off_gt_1_code,reference_row_share,failure";
-
 bool isLightcuts(const SweepVariant& v) { return v.method == Method::Lightcuts; }
 
-std::string csvRow(const RunRecord& r, double floorMs) {
-  const ImageErrors& e = r.errors;
-  std::string failure = r.failure;
-  std::replace(failure.begin(), failure.end(), '"', '\'');
-  std::ostringstream s;
-  s << r.caseName << ',' << lightLayoutName(r.layout) << ',' << r.lights << ','
-    << methodName(r.variant.method) << ','
-    << (isLightcuts(r.variant) ? (r.variant.mode == ErrorMode::Total ? "total" : "node") : "")
-    << ',' << (isLightcuts(r.variant) ? number(r.variant.error) : "") << ','
-    << (r.variant.method == Method::Reference ? "" : std::to_string(r.maxCut)) << ',' << r.width
-    << ',' << r.height << ',' << r.repeats << ',' << number(r.renderMs) << ','
-    << number(r.renderMsMin) << ',' << number(r.renderMsMax) << ',' << number(r.ratioToReference)
-    << ',' << number(r.ratioToFloor) << ',' << number(floorMs) << ','
-    << number(r.lightEvaluationsPerPixel) << ',' << number(r.nodeEvaluationsPerPixel) << ','
-    << number(r.averageCut) << ',' << r.largestCut << ',' << r.pixelsAtMaxCut << ','
-    << r.pixelsSharedCut << ',' << number(r.bakeMs) << ',' << number(r.peakRssMb) << ',' << e.pixels
-    << ',' << e.nonFinite << ',' << number(e.maxRelative) << ',' << number(e.p99Relative) << ','
-    << number(e.maxAbsolute) << ',' << number(e.rmse8) << ',' << number(e.psnr8) << ','
-    << number(e.offByMoreThanOneCode) << ',' << number(1.0 / r.rowBandStride) << ",\"" << failure
-    << '"';
-  return s.str();
-}
+// One field of a run's record. The CSV has a column for every field with inCsv, in this
+// order (empty where the value is absent); the JSON has a key for every present value
+// with inJson (non-finite numbers as null: JSON has no infinity).
+struct Field {
+  using value_type = std::variant<std::monostate, long long, double, std::string>;
+  const char* name;
+  value_type value;
+  bool inCsv = true, inJson = true;
+};
 
-nlohmann::json runJson(const RunRecord& r) {
+std::vector<Field> fields(const RunRecord& r, double floorMs) {
   const ImageErrors& e = r.errors;
-  nlohmann::json j = {
+  const bool lightcuts = isLightcuts(r.variant), reference = r.variant.method == Method::Reference;
+  auto ifLightcuts = [&](auto v) -> Field::value_type {
+    return lightcuts ? Field::value_type(v) : std::monostate{};
+  };
+  // Cut statistics: 0 in the reference's CSV rows, absent from its JSON.
+  auto cut = [&](const char* name, auto v) { return Field{name, v, true, !reference}; };
+  return {
       {"case", r.caseName},
       {"layout", lightLayoutName(r.layout)},
-      {"lights", r.lights},
+      {"lights", (long long)r.lights},
       {"method", methodName(r.variant.method)},
-      {"label", r.variant.label()},
-      {"width", r.width},
-      {"height", r.height},
-      {"repeats", r.repeats},
+      {"label", r.variant.label(), false, true},
+      {"mode", ifLightcuts(std::string(r.variant.mode == ErrorMode::Total ? "total" : "node"))},
+      {"error", ifLightcuts(double(r.variant.error))},
+      {"max_cut", reference ? Field::value_type{} : (long long)r.maxCut},
+      {"width", (long long)r.width},
+      {"height", (long long)r.height},
+      {"repeats", (long long)r.repeats},
       {"render_ms", r.renderMs},
       {"render_ms_min", r.renderMsMin},
       {"render_ms_max", r.renderMsMax},
       {"ratio_to_reference", r.ratioToReference},
       {"ratio_to_floor", r.ratioToFloor},
+      {"floor_ms", floorMs, true, false},
       {"light_evals_per_px", r.lightEvaluationsPerPixel},
       {"node_evals_per_px", r.nodeEvaluationsPerPixel},
+      cut("avg_cut", r.averageCut),
+      cut("largest_cut", (long long)r.largestCut),
+      cut("pixels_at_max_cut", (long long)r.pixelsAtMaxCut),
+      cut("pixels_shared_cut", (long long)r.pixelsSharedCut),
       {"bake_ms", r.bakeMs},
       {"peak_rss_mb", r.peakRssMb},
-      {"pixels_compared", e.pixels},
-      {"non_finite_pixels", e.nonFinite},
-      {"max_rel_error", jsonNumber(e.maxRelative)},
-      {"p99_rel_error", jsonNumber(e.p99Relative)},
-      {"max_abs_error", jsonNumber(e.maxAbsolute)},
+      {"pixels_compared", (long long)e.pixels},
+      {"non_finite_pixels", (long long)e.nonFinite},
+      {"max_rel_error", e.maxRelative},
+      {"p99_rel_error", e.p99Relative},
+      {"max_abs_error", e.maxAbsolute},
       {"rmse_8bit", e.rmse8},
-      {"psnr_8bit", jsonNumber(e.psnr8)},
+      {"psnr_8bit", e.psnr8},
       {"share_off_gt_1_code", e.offByMoreThanOneCode},
       {"reference_row_share", 1.0 / r.rowBandStride},
       {"failure", r.failure},
   };
-  if (isLightcuts(r.variant)) {
-    j["mode"] = r.variant.mode == ErrorMode::Total ? "total" : "node";
-    j["error"] = r.variant.error;
+}
+
+std::string csvHeader() {
+  std::string out;
+  for (const Field& f : fields(RunRecord{}, 0.0)) {
+    if (f.inCsv) out += std::string(out.empty() ? "" : ",") + f.name;
   }
-  if (r.variant.method != Method::Reference) {
-    j["max_cut"] = r.maxCut;
-    j["avg_cut"] = r.averageCut;
-    j["largest_cut"] = r.largestCut;
-    j["pixels_at_max_cut"] = r.pixelsAtMaxCut;
-    j["pixels_shared_cut"] = r.pixelsSharedCut;
+  return out;
+}
+
+std::string csvRow(const RunRecord& r, double floorMs) {
+  std::string out;
+  bool first = true;
+  for (const Field& f : fields(r, floorMs)) {
+    if (!f.inCsv) continue;
+    if (!first) out += ',';
+    first = false;
+    if (const auto* i = std::get_if<long long>(&f.value)) {
+      out += std::to_string(*i);
+    } else if (const auto* d = std::get_if<double>(&f.value)) {
+      out += number(*d);
+    } else if (const auto* text = std::get_if<std::string>(&f.value)) {
+      if (std::string_view(f.name) != "failure") {
+        out += *text;
+        continue;
+      }
+      std::string quoted = *text;  // the one free-text column: quoted, its quotes replaced
+      std::replace(quoted.begin(), quoted.end(), '"', '\'');
+      out += '"' + quoted + '"';
+    }
+  }
+  return out;
+}
+
+nlohmann::json runJson(const RunRecord& r) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const Field& f : fields(r, 0.0)) {
+    if (!f.inJson) continue;
+    if (const auto* i = std::get_if<long long>(&f.value)) {
+      j[f.name] = *i;
+    } else if (const auto* d = std::get_if<double>(&f.value)) {
+      j[f.name] = jsonNumber(*d);
+    } else if (const auto* text = std::get_if<std::string>(&f.value)) {
+      j[f.name] = *text;
+    }
   }
   return j;
 }
@@ -319,7 +350,7 @@ int runBench(const BenchArgs& a) {
       {"hardware_threads", std::thread::hardware_concurrency()},
       {"runs", nlohmann::json::array()},
   };
-  std::string csv = std::string(kColumns) + "\n";
+  std::string csv = csvHeader() + "\n";
   const std::set<std::string> done =
       a.resume ? resumeFrom(a, &json, &csv) : std::set<std::string>{};
   const int steps = int(cases.size() * settings.variants.size()) + (stability ? a.frames : 0) + 1;
