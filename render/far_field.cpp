@@ -14,6 +14,9 @@ void writeTexel(std::vector<std::uint32_t>& words, glm::dvec3 v) {
   words.push_back(0u);
 }
 
+// The slope of the cone's smoothstep σ(t) = t²(3 − 2t) at t in [0, 1].
+double smoothstepSlope(double t) { return 6.0 * t * (1.0 - t); }
+
 }  // namespace
 
 ConeVariation coneVariation(float scale, float offset, float outerCos, glm::vec2 cosines) {
@@ -26,8 +29,7 @@ ConeVariation coneVariation(float scale, float offset, float outerCos, glm::vec2
     v.slope = v.curvature = 0.0;
     return v;
   }
-  auto slope = [](double t) { return 6.0 * t * (1.0 - t); };
-  v.slope = t0 <= 0.5 && t1 >= 0.5 ? 1.5 : std::max(slope(t0), slope(t1));
+  v.slope = t0 <= 0.5 && t1 >= 0.5 ? 1.5 : std::max(smoothstepSlope(t0), smoothstepSlope(t1));
   v.curvature = std::max(std::abs(6.0 - 12.0 * t0), std::abs(6.0 - 12.0 * t1));
   const double cosine = std::max(double(cosines.x), double(outerCos));
   v.sine = cosine > 0.0 ? std::sqrt(1.0 - cosine * cosine) : 1.0;
@@ -80,7 +82,7 @@ void FarField::add(glm::vec3 position, float invRange2, const Cone* cone, glm::v
     const double tRaw = double(cone->scale) * cosine + double(cone->offset);
     const double t = std::clamp(tRaw, 0.0, 1.0);
     const double sigma = t * t * (3.0 - 2.0 * t);
-    const double slope = tRaw > 0.0 && tRaw < 1.0 ? 6.0 * t * (1.0 - t) : 0.0;
+    const double slope = tRaw > 0.0 && tRaw < 1.0 ? smoothstepSlope(t) : 0.0;
     const glm::dvec3 gradient = slope * double(cone->scale) * (axis - cosine * u) / r;
     jacobian = sigma * jacobian + glm::outerProduct(value, gradient);
     value *= sigma;

@@ -73,10 +73,14 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     int x0, y0, size;
     std::vector<int> pixels;
   };
+  // Squares are dealt out round robin: square t is part partOf(t)'s. The merge below
+  // renumbers each pixel's cut by its square's part.
+  auto partOf = [&](int t) { return t % threads; };
   auto work = [&](int index) {
     Part& part = parts[std::size_t(index)];
     std::vector<Group> todo;
-    for (int t = index; t < coarse; t += threads) {
+    for (int t = 0; t < coarse; ++t) {
+      if (partOf(t) != index) continue;
       Group top{(t % coarseX) * tileSize, (t / coarseX) * tileSize, tileSize, {}};
       for (int y = top.y0; y < std::min(top.y0 + tileSize, px.height); ++y) {
         for (int x = top.x0; x < std::min(top.x0 + tileSize, px.width); ++x) {
@@ -163,7 +167,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     std::uint32_t& c = out.cutOfPixel[i];
     if (c == kNoSharedCut) continue;
     const int x = int(i % std::size_t(px.width)), y = int(i / std::size_t(px.width));
-    c += firstCut[std::size_t(((y / tileSize) * coarseX + x / tileSize) % threads)];
+    c += firstCut[std::size_t(partOf((y / tileSize) * coarseX + x / tileSize))];
   }
   out.texels.assign((2 * cuts + entryTexels) * 4, 0u);
   std::size_t next = 2 * cuts;
