@@ -144,6 +144,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         {"interrupted", gInterrupted.load()},
         {"output_closed", outputClosed},
         {"total_ms", msSince(processStart)}};
+    if (r.method != Method::Reference) stats["frame_cut_ms"] = out.cutMs;
     writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
   if (gInterrupted) {

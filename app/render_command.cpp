@@ -81,6 +81,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
   if (request.method != Method::Reference) {
     const CutStats& c = out.frame.cuts;
     stats["bake_ms"] = out.bakeMs;
+    stats["cut_ms"] = out.frame.cutMs;
     stats["avg_cut_size"] = c.averageCut;
     stats["max_cut_size"] = c.maxCut;
     stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;

@@ -1,6 +1,7 @@
 #include "render/lightcuts_method.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <thread>
 
@@ -73,6 +74,7 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     cutTiles(gbuffer, settings, tileSize);
   } else {
     tileInfo_ = {};
+    cutMs_ = 0.0;
   }
   const gl::Program& shader = program(defines);
   shader.use();
@@ -123,6 +125,7 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& 
   }
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const auto start = std::chrono::steady_clock::now();  // the G-buffer is here
   GBufferPixels pixels{width_, height_, readback_.data(), readback_.data() + plane,
                        readback_.data() + 2 * plane};
   const CutRule rule{settings.error, settings.mode == ErrorMode::Total,
@@ -138,6 +141,8 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& 
                   tileInfo_.cutOfPixel.data());
   glBindTexture(GL_TEXTURE_2D, 0);
   tileInfo_.cutOfPixel = {};
+  cutMs_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 CutStats LightcutsMethod::cutStats() const {

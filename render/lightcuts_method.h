@@ -68,6 +68,9 @@ class LightcutsMethod {
 
   // Reads back the statistics of the last light() call.
   CutStats cutStats() const;
+  // Milliseconds the last light() call spent finding shared cuts on the CPU and uploading
+  // them, after the G-buffer was read back (0 without shared cuts).
+  double cutMs() const { return cutMs_; }
 
   // The node colour coding of the packed trees: its fit and the error it adds.
   const NodeColourCoder& nodeColour() const { return layout_.colour; }
@@ -85,6 +88,7 @@ class LightcutsMethod {
   gl::Texture cutOfPixel_;                  // this frame's cut per pixel (R32UI)
   mutable TileCuts tileInfo_;               // its counts (the texels are dropped)
   mutable std::vector<float> readback_;
+  mutable double cutMs_ = 0.0;
   bool distance_;
   int width_, height_;
   gl::Texture statsTarget_;

@@ -37,6 +37,7 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
     p.settings.readCutStats = i == 0;  // a readback of the whole statistics target; reported once
     const Image image = p.renderer->render(makeView(camera, r.width, r.height), p.settings, &stats);
     out.renderMs.push_back(stats.renderMs);
+    out.cutMs.push_back(stats.cutMs);
     if (i == 0) out.firstFrameCuts = stats.cuts;
     ++out.framesRendered;
     if (!sink(i, image, stats)) break;

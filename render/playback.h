@@ -26,6 +26,7 @@ struct PlaybackOutcome {
   std::size_t lightCount = 0;
   double bakeMs = 0.0;
   std::vector<double> renderMs;  // per frame
+  std::vector<double> cutMs;     // per frame: of renderMs, lightcuts' shared cuts on the CPU
   CutStats firstFrameCuts;
 };
 

@@ -191,6 +191,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   if (stats) {
     stats->renderMs = std::chrono::duration<double, std::milli>(end - start).count();
     stats->lightingPasses = passes;
+    stats->cutMs = lightcuts_ ? lightcuts_->cutMs() : 0.0;
     if (lightcuts_ && settings.readCutStats) stats->cuts = lightcuts_->cutStats();
   }
   return image;

@@ -232,6 +232,9 @@ TEST(Cli, LightcutsWritesCutStatistics) {
   EXPECT_EQ(stats["max_cut"], 500);
   EXPECT_DOUBLE_EQ(stats["error"].get<double>(), 0.05f);
   EXPECT_GT(stats["bake_ms"].get<double>(), 0.0);
+  // Shared cuts (the default --cut-tile 16) are found on the CPU within the frame.
+  EXPECT_GT(stats["cut_ms"].get<double>(), 0.0);
+  EXPECT_LT(stats["cut_ms"].get<double>(), stats["render_ms"].get<double>());
   EXPECT_GE(stats["avg_cut_size"].get<double>(), 1.0);
   EXPECT_LE(stats["avg_cut_size"].get<double>(), 500.0);
   EXPECT_LE(stats["max_cut_size"].get<int>(), 500);

@@ -249,6 +249,11 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
   const auto stats = nlohmann::json::parse(readFile(dir / "play.json"));
   EXPECT_EQ(stats["frames"], 4);
   EXPECT_EQ(stats["frame_render_ms"].size(), 4u);
+  ASSERT_EQ(stats["frame_cut_ms"].size(), 4u);  // lightcuts, the default, with shared cuts
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_GT(stats["frame_cut_ms"][i].get<double>(), 0.0);
+    EXPECT_LT(stats["frame_cut_ms"][i].get<double>(), stats["frame_render_ms"][i].get<double>());
+  }
   EXPECT_GT(stats["render_fps"].get<double>(), 0.0);
   // Frame 0 is the still render of the same camera, bit for bit; later frames have turned.
   const fs::path still = dir / "still.png";
