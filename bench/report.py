@@ -201,8 +201,7 @@ WHY = {
         "so a cut of many nodes just under the threshold adds up to several ε.",
     ("*", "lightcuts-total"):
         "the total rule guarantees ε only where the cut converges; pixels at the maximum cut "
-        "keep a cut of the maximum size (their group's, largest bounds refined first, or their "
-        "own last pass that fitted), with no bound.",
+        "keep the last pass that fitted, with no bound.",
     ("*", "reference"): "it is the reference; its own error is zero by definition.",
 
     ("two-groups", "lightcuts-distance"):

@@ -48,8 +48,7 @@ uniform vec2 uColourSlack;  // η and ζ of the node colour coding
 
 layout(location = 0) out vec4 oRadiance;
 // x: cut size, y: light evaluations, z: node bound evaluations, w: 1, or 2 where the cut hit
-// uMaxCut, 3 where the pixel took its group's shared cut, 4 where that cut was full (0 stays
-// on background pixels).
+// uMaxCut, 3 where the pixel took its group's shared cut (0 stays on background pixels).
 layout(location = 1) out vec4 oCutStats;
 
 const float kUnbounded = 3.0e38;
@@ -180,7 +179,7 @@ vec3 errorSum;     // Σ of the cut's error bounds (upper − lower), bounded no
 int cutSize;
 int unboundedNodes;  // nodes kept in the cut although unbounded (only when the cut is full)
 float largestMeasure;  // the largest measure among the cut's bounded nodes
-bool atMax = false;  // the cut could not be refined further for want of room
+bool atMax;          // the cut could not be refined further for want of room
 
 // Most recently computed representative term, reused when the next node shares it (a
 // left child has its parent's representative half of the time).
@@ -420,12 +419,6 @@ bool tileCut() {
   int count = counts.x + counts.y + counts.z;
   lightEvaluations += count + min(folded, 1);  // the far field counts as one
   iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;  // loop iterations run
-  if (uintBitsToFloat(check.x) < 0.0) {  // a full cut: no bound, the pixel is at the maximum
-    estimateSum = sum;
-    cutSize = count + folded;
-    atMax = true;
-    return true;
-  }
   bool holds = ruleHolds(maxOf(bound), bound, sum);
   if (holds) {
     estimateSum = sum;
@@ -463,5 +456,5 @@ void main() {
 #endif
   oRadiance = vec4(estimateSum, 0.0);
   oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations),
-                   tookTileCut ? (atMax ? 4.0 : 3.0) : atMax ? 2.0 : 1.0);
+                   tookTileCut ? 3.0 : atMax ? 2.0 : 1.0);
 }

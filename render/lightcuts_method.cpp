@@ -166,10 +166,9 @@ CutStats LightcutsMethod::cutStats() const {
     lightEvals += texels[i + 1];
     nodeEvals += texels[i + 2];
     stats.maxCut = std::max(stats.maxCut, int(texels[i]));
-    // 1 own cut, 2 own cut at the maximum, 3 the group's, 4 the group's full cut
-    const int kind = int(texels[i + 3] + 0.5f);
-    if (kind >= 3) ++stats.pixelsSharedCut;
-    if (kind == 2 || kind == 4) {
+    const int kind = int(texels[i + 3] + 0.5f);  // 1 own cut, 2 own cut at the maximum, 3 tile's
+    if (kind == 3) ++stats.pixelsSharedCut;
+    if (kind == 2) {
       ++stats.pixelsAtMaxCut;
       const std::size_t pixel = i / 4, x = pixel % width_, y = pixel / width_;
       stats.atMaxCut[(height_ - 1 - y) * width_ + x] = 1;  // GL rows run bottom-up

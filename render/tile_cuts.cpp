@@ -24,12 +24,7 @@ constexpr float kAbsoluteFloor = 1e-6f;        // glsl/lighting_lightcuts.frag
 // their own check.
 constexpr float kMargin = 0.5f;
 // Under the total rule, a square whose cut filled up is split into quarters only if the
-// cut's summed bound was within this factor of the rule's target. Further off, neither the
-// quarters nor the pixels' own cuts would meet the rule within the maximum (their bounds
-// add up over the whole cut), so a group that cannot be split by its normals keeps its full
-// cut, largest bounds refined first as in the paper, and its pixels count as at the
-// maximum: walking their own cuts cost up to 40 s a frame at 262,144 lights and ended on
-// smaller cuts.
+// cut's summed bound was within this factor of the rule's target.
 constexpr float kSplitShortfall = 8.0f;
 // Under the total rule, entries fold into the far field while the summed bound stays within
 // this share of the rule's target (the cut itself stopped at kMargin).
@@ -48,8 +43,7 @@ struct TileCutter::Result {
   int counts[3] = {0, 0, 0};  // entries per tree, besides the far field
   int folded = 0;             // entries in the far field
   glm::vec3 check{0.0f};
-  bool perPixel = false;  // the cut filled up
-  bool full = false;      // and is kept all the same (kSplitShortfall)
+  bool perPixel = false;
   long long bounds = 0;
   float shortfall = 0.0f;  // a full cut: how far its measure was above the rule's target
 };
@@ -111,20 +105,17 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
           result = cutTile(g, rule, part.entries);
           part.bounds += result.bounds;
         }
-        auto share = [&] {
+        if (tried && !result.perPixel) {
           for (const int i : group.pixels)
             out.cutOfPixel[std::size_t(i)] = std::uint32_t(part.cuts.size());
           part.cuts.push_back(result);
           part.entry.push_back(entry);
-        };
-        if (tried && !result.perPixel) {
-          share();
           continue;
         }
+        part.entries.resize(entry);
         Group a{group.x0, group.y0, group.size, {}}, b = a;
         if ((!cone || g.cosSpread < kSurfaceSpread) &&
             splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) {
-          part.entries.resize(entry);
           ++part.splits;
           todo.push_back(std::move(a));
           todo.push_back(std::move(b));
@@ -135,7 +126,6 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
         // over the whole cut); under the node rule the culprit is mostly a light near one
         // corner, which a quarter leaves out.
         if (cone && group.size > fine && (!rule.total || result.shortfall < kSplitShortfall)) {
-          part.entries.resize(entry);
           const int h = group.size / 2;
           Group quarter[4];
           for (int q = 0; q < 4; ++q)
@@ -149,11 +139,6 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
           }
           continue;
         }
-        if (result.full) {
-          share();
-          continue;
-        }
-        part.entries.resize(entry);
         ++part.perPixel;
       }
     }
@@ -345,9 +330,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
       const float have = rule.total ? maxOf(errorSum) : top;
       const float want = kMargin * rule.error * maxOf(rule.total ? sum - errorSum : sum);
       result.shortfall = want > 0.0f ? have / want : std::numeric_limits<float>::infinity();
-      if (!rule.total || !(result.shortfall >= kSplitShortfall)) return result;
-      result.full = true;  // unless the group splits by its normals, this is its cut
-      break;
+      return result;
     }
     std::pop_heap(heap.begin(), heap.end());
     const Item parent = items[std::size_t(heap.back() & 0xffffffffu)];
@@ -454,7 +437,6 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     for (const float w : {it.intensity.x, it.intensity.y, it.intensity.z, coneOffset})
       e.push_back(layout::wordOf(w));
   }
-  if (result.full) result.check = glm::vec3(-1.0f);  // no bound: the header's mark
   result.folded = far.count();
   if (!far.empty()) far.write(entries);
   for (int t = 0; t < 3; ++t) {

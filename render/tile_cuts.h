@@ -47,10 +47,8 @@ struct CutRule {
 // words (GL_RGBA32UI), one texture buffer:
 //   texel 2c      cut c: its first entry texel, then the number of entries of the
 //                 directional, point and spot trees, in that order
-//   texel 2c + 1  U (node rule) or B (total rule) per unit albedo, as float bits (−1: a
-//                 full cut, which holds no bound: its pixels take it and count as at the
-//                 maximum; total rule only, see kSplitShortfall); how many entries the far
-//                 field holds
+//   texel 2c + 1  U (node rule) or B (total rule) per unit albedo, as float bits; how many
+//                 entries the far field holds
 //   from texel 2·cuts: each cut's far field (render/far_field.h: kFarFieldTexels texels,
 //     when it holds any entry), then its entries, directional, point, spot, as float bits:
 //     directional, point: 2 texels, the representative's direction towards it (or

@@ -88,13 +88,11 @@ struct Checked {
   int sharedPixels = 0, failing = 0;
   int perPixel = 0;             // covered pixels without a shared cut
   int mixedSurfaces = 0;        // shared pixels facing over 90° away from their cut's first pixel
-  int fullPixels = 0;           // shared pixels whose cut is full (no bound)
   int farFieldPixels = 0;       // shared pixels whose cut has a far field
   double worstOverBound = 0.0;  // largest error / bound
 };
 
-Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tileSize,
-                       int maxCut = 8000) {
+Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tileSize) {
   const SyntheticGBuffer g;
   const PackedTrees packed = packLightTrees(buildLightTrees(lights));
   const TileCutter cutter(packed, lights);
@@ -103,7 +101,7 @@ Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tile
     if (lights[i].type == LightType::Spot)
       spotAt[{lights[i].position.x, lights[i].position.y, lights[i].position.z}] = i;
   }
-  const TileCuts cuts = cutter.cut(g.pixels(), tileSize, CutRule{epsilon, true, maxCut}, 2);
+  const TileCuts cuts = cutter.cut(g.pixels(), tileSize, CutRule{epsilon, true, 8000}, 2);
   EXPECT_EQ(cuts.cutOfPixel.size(), std::size_t(kSize * kSize));
   Checked c;
   std::map<std::uint32_t, glm::dvec3> normalOfCut;  // its first pixel's
@@ -154,10 +152,6 @@ Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tile
       }
       const glm::dvec3 bound(floatOf(head[4]), floatOf(head[5]), floatOf(head[6]));
       ++c.sharedPixels;
-      if (bound.x < 0.0) {  // a full cut: no bound to hold
-        ++c.fullPixels;
-        continue;
-      }
       for (int ch = 0; ch < 3; ++ch) {
         const double error = std::abs(estimate[ch] - exact[ch]);
         // Float bounds and decoding against double sums: 1e-4 of the pixel, and a floor.
@@ -189,7 +183,6 @@ TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
         EXPECT_GT(c.farFieldPixels, c.sharedPixels / 2);
       }
       EXPECT_EQ(c.failing, 0);
-      EXPECT_EQ(c.fullPixels, 0);  // 8,000 nodes hold every cut
       // The ceiling patch's squares split by surface: every covered pixel shares a cut, and
       // no cut is shared by normals over 90° apart.
       EXPECT_EQ(c.perPixel, 0);
@@ -245,38 +238,6 @@ TEST(FarField, SpotWithItsConeIsItsFirstOrderExpansion) {
       // The remainder bound at distance δ, plus 1e-6 of the value: F and J are stored as floats.
       EXPECT_LE(error, bound * (delta * delta) / (h * h) + 1e-6 * exact) << delta;
     }
-  }
-}
-
-// Under the total rule a group whose cut is full far from its target keeps that cut (no
-// bound), rather than leaving its pixels to cuts of their own that would fill up too; under
-// the node rule the pixels still cut for themselves.
-TEST(TileCuts, TotalRuleFarFromItsTargetKeepsTheFullCut) {
-  const SyntheticGBuffer g;
-  const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
-  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
-  const int maxCut = 16;
-  int covered = 0;
-  for (const bool total : {true, false}) {
-    const TileCuts cuts = cutter.cut(g.pixels(), 16, CutRule{0.02f, total, maxCut}, 2);
-    SCOPED_TRACE(total ? "total" : "node");
-    covered = 0;
-    int full = 0, perPixel = 0;
-    for (std::size_t i = 0; i < cuts.cutOfPixel.size(); ++i) {
-      if (g.normal[4 * i + 3] == 0.0f) continue;
-      ++covered;
-      const std::uint32_t cut = cuts.cutOfPixel[i];
-      if (cut == kNoSharedCut) {
-        ++perPixel;
-        continue;
-      }
-      const std::uint32_t* head = cuts.texels.data() + std::size_t(cut) * 8;
-      if (floatOf(head[4]) < 0.0f) ++full;
-      EXPECT_LE(head[1] + head[2] + head[3] + head[7], std::uint32_t(maxCut));
-    }
-    ASSERT_GT(covered, kSize * kSize / 2);
-    EXPECT_EQ(full, total ? covered : 0);
-    EXPECT_EQ(perPixel, total ? 0 : covered);
   }
 }
 
