@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "bake/light_tree_layout.h"
+#include "render/cut_heap.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
 
@@ -36,52 +37,6 @@ constexpr float kFoldMargin = 0.75f;
 constexpr float kHopeless = 4.0f;
 
 float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
-
-// std::push_heap and std::pop_heap on a max-heap of unique keys, step for step as libstdc++
-// does them (so the heap's layout, and with it the order of a cut's entries, is the same),
-// with the larger child chosen without a branch: that choice is a coin toss, and the
-// mispredicted branch was a fifth of the cut's time.
-void pushHeap(std::vector<std::uint64_t>& heap) {
-  std::uint64_t* h = heap.data();
-  std::size_t hole = heap.size() - 1;
-  const std::uint64_t value = h[hole];
-  while (hole > 0) {
-    const std::size_t parent = (hole - 1) / 2;
-    if (!(h[parent] < value)) break;
-    h[hole] = h[parent];
-    hole = parent;
-  }
-  h[hole] = value;
-}
-
-// Moves the largest key to the back; the caller pops it.
-void popHeap(std::vector<std::uint64_t>& heap) {
-  std::uint64_t* h = heap.data();
-  const std::size_t len = heap.size() - 1;  // the heap without its back
-  const std::uint64_t value = h[len];
-  h[len] = h[0];
-  // The hole at the root sinks to a leaf along the larger children, then the old back
-  // rises into it.
-  std::size_t hole = 0, child = 0;
-  while (len >= 2 && child < (len - 1) / 2) {
-    child = 2 * (child + 1);
-    child -= std::size_t(h[child] < h[child - 1]);
-    h[hole] = h[child];
-    hole = child;
-  }
-  if ((len & 1) == 0 && len >= 2 && child == (len - 2) / 2) {
-    child = 2 * (child + 1);
-    h[hole] = h[child - 1];
-    hole = child - 1;
-  }
-  while (hole > 0) {
-    const std::size_t parent = (hole - 1) / 2;
-    if (!(h[parent] < value)) break;
-    h[hole] = h[parent];
-    hole = parent;
-  }
-  h[hole] = value;
-}
 
 }  // namespace
 
@@ -352,7 +307,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
     const int k = int(items.size()) - 1;
     if (it.measure > 0.0f) {
       heap.push_back(entry(it.measure, k));
-      pushHeap(heap);
+      cut_heap::pushHeap(heap);
     } else {
       settled.push_back(k);
     }
@@ -378,7 +333,7 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
       result.shortfall = want > 0.0f ? have / want : std::numeric_limits<float>::infinity();
       return result;
     }
-    popHeap(heap);
+    cut_heap::popHeap(heap);
     const Item parent = items[std::size_t(heap.back() & 0xffffffffu)];
     heap.pop_back();
     sum -= parent.estimate;

@@ -5,14 +5,17 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <map>
+#include <random>
 
 #include "bake/light_pack.h"
 #include "bake/light_tree.h"
 #include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
+#include "render/cut_heap.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
 #include "scene/light_layouts.h"
@@ -238,6 +241,30 @@ TEST(FarField, SpotWithItsConeIsItsFirstOrderExpansion) {
       // The remainder bound at distance δ, plus 1e-6 of the value: F and J are stored as floats.
       EXPECT_LE(error, bound * (delta * delta) / (h * h) + 1e-6 * exact) << delta;
     }
+  }
+}
+
+// The cut's heap keeps std::push_heap's and std::pop_heap's layout, so cuts list their
+// entries in the same order (and images stay bit for bit) whichever is used.
+TEST(CutHeap, LaysKeysOutAsTheStandardHeapDoes) {
+  std::mt19937_64 random(7);
+  std::vector<std::uint64_t> ours, standard;
+  std::uint64_t next = 0;
+  for (int step = 0; step < 20000; ++step) {
+    if (ours.empty() || random() % 3 != 0) {
+      const std::uint64_t key = (random() >> 32) << 32 | next++;  // unique, as the cut's are
+      ours.push_back(key);
+      standard.push_back(key);
+      cut_heap::pushHeap(ours);
+      std::push_heap(standard.begin(), standard.end());
+    } else {
+      cut_heap::popHeap(ours);
+      std::pop_heap(standard.begin(), standard.end());
+      ASSERT_EQ(ours.back(), standard.back());
+      ours.pop_back();
+      standard.pop_back();
+    }
+    ASSERT_EQ(ours, standard) << "step " << step;
   }
 }
 
