@@ -11,10 +11,9 @@ namespace manylight::cut_heap {
 // with the larger child chosen without a branch: that choice is a coin toss. Its
 // mispredictions took a fifth of the cut loop's samples; branchless, a 65,536-light frame's
 // branch misses fell by a third and its cut by about 5%.
-inline void pushHeap(std::vector<std::uint64_t>& heap) {
-  std::uint64_t* h = heap.data();
-  std::size_t hole = heap.size() - 1;
-  const std::uint64_t value = h[hole];
+
+// Lets `value` rise from the hole at `hole` to its place (libstdc++'s __push_heap).
+inline void siftUp(std::uint64_t* h, std::size_t hole, std::uint64_t value) {
   while (hole > 0) {
     const std::size_t parent = (hole - 1) / 2;
     if (!(h[parent] < value)) break;
@@ -22,6 +21,11 @@ inline void pushHeap(std::vector<std::uint64_t>& heap) {
     hole = parent;
   }
   h[hole] = value;
+}
+
+inline void pushHeap(std::vector<std::uint64_t>& heap) {
+  const std::size_t back = heap.size() - 1;
+  siftUp(heap.data(), back, heap[back]);
 }
 
 // Moves the largest key to the back; the caller pops it.
@@ -44,13 +48,7 @@ inline void popHeap(std::vector<std::uint64_t>& heap) {
     h[hole] = h[child - 1];
     hole = child - 1;
   }
-  while (hole > 0) {
-    const std::size_t parent = (hole - 1) / 2;
-    if (!(h[parent] < value)) break;
-    h[hole] = h[parent];
-    hole = parent;
-  }
-  h[hole] = value;
+  siftUp(h, hole, value);
 }
 
 }  // namespace manylight::cut_heap
