@@ -71,12 +71,13 @@ def charts(rows, settings, docs):
     os.makedirs(out_dir, exist_ok=True)
     made = []
     layouts = list(dict.fromkeys(r["layout"] for r in rows))
-    counts = sorted({int(r["lights"]) for r in rows})
     floor = min(number(r["floor_ms"]) for r in rows)
     setting = f"{settings['width']}x{settings['height']}, median of {settings['repeats']}"
     with tempfile.TemporaryDirectory() as data:
         for layout in layouts:
             mine = [r for r in rows if r["layout"] == layout and not r["failure"]]
+            # The counts measured for this layout (an interrupted sweep may lack some).
+            counts = sorted({int(r["lights"]) for r in mine})
             for n in counts:
                 at = [r for r in mine if int(r["lights"]) == n]
                 base = os.path.join(data, f"{layout}-{n}")
