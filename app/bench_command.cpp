@@ -9,7 +9,6 @@
 #include <iostream>
 #include <set>
 #include <sstream>
-#include <string_view>
 #include <thread>
 #include <variant>
 
@@ -68,12 +67,13 @@ bool isLightcuts(const SweepVariant& v) { return v.method == Method::Lightcuts; 
 
 // One field of a run's record. The CSV has a column for every field with inCsv, in this
 // order (empty where the value is absent); the JSON has a key for every present value
-// with inJson (non-finite numbers as null: JSON has no infinity).
+// with inJson (non-finite numbers as null: JSON has no infinity). A free-text field is
+// quoted in the CSV, its own quotes replaced.
 struct Field {
   using value_type = std::variant<std::monostate, long long, double, std::string>;
   const char* name;
   value_type value;
-  bool inCsv = true, inJson = true;
+  bool inCsv = true, inJson = true, freeText = false;
 };
 
 std::vector<Field> fields(const RunRecord& r, double floorMs) {
@@ -119,7 +119,7 @@ std::vector<Field> fields(const RunRecord& r, double floorMs) {
       {"psnr_8bit", e.psnr8},
       {"share_off_gt_1_code", e.offByMoreThanOneCode},
       {"reference_row_share", 1.0 / r.rowBandStride},
-      {"failure", r.failure},
+      {"failure", r.failure, true, true, true},
   };
 }
 
@@ -143,11 +143,11 @@ std::string csvRow(const RunRecord& r, double floorMs) {
     } else if (const auto* d = std::get_if<double>(&f.value)) {
       out += number(*d);
     } else if (const auto* text = std::get_if<std::string>(&f.value)) {
-      if (std::string_view(f.name) != "failure") {
+      if (!f.freeText) {
         out += *text;
         continue;
       }
-      std::string quoted = *text;  // the one free-text column: quoted, its quotes replaced
+      std::string quoted = *text;
       std::replace(quoted.begin(), quoted.end(), '"', '\'');
       out += '"' + quoted + '"';
     }

@@ -40,6 +40,7 @@
 namespace manylight::layout {
 
 inline constexpr int kNodeWords = 10;
+inline constexpr int kSpotNodeWords = 14;
 
 // A float as the word that stores it, and back (here and in the tile cuts' texels).
 inline std::uint32_t wordOf(float f) {
@@ -52,6 +53,5 @@ inline float floatOf(std::uint32_t w) {
   std::memcpy(&f, &w, sizeof f);
   return f;
 }
-inline constexpr int kSpotNodeWords = 14;
 
 }  // namespace manylight::layout
