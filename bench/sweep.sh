@@ -4,8 +4,9 @@
 # installed (bench/peers.sh), then the charts and pages (bench/report.py, gnuplot).
 # Run from the repository root after the build (README.md, command 1):
 #   bench/sweep.sh            the sweep: 640x480, 4 layouts x 6 counts up to 1,048,576,
-#                             every method, ε and mode (about 2.5 hours on the 2-core machine)
-#   bench/sweep.sh --quick    the same at 320x240 (about 1 hour): what docs/ shows today
+#                             every method, ε and mode (about 2.5 hours on the 2-core machine):
+#                             what docs/ shows today
+#   bench/sweep.sh --quick    the same at 320x240 (about 1 hour)
 #   bench/sweep.sh --resume   go on with an interrupted sweep: finished cases are kept
 #   bench/sweep.sh --report   only redraw the charts and pages from docs/results/
 # Results (CSV and JSON) go to docs/results/, rewritten after every case.
