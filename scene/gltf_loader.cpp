@@ -33,11 +33,42 @@ std::string oneLine(std::string s) {
   return s;
 }
 
-// `user`: the LoadOptions.
+// Throws SceneError unless bufferView `i` names a buffer and lies within it.
+void checkBufferView(const tinygltf::Model& model, int i) {
+  const tinygltf::BufferView& view = model.bufferViews[std::size_t(i)];
+  if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) {
+    throw SceneError("bufferView " + std::to_string(i) + ": buffer " + std::to_string(view.buffer) +
+                     " does not exist");
+  }
+  const std::size_t size = model.buffers[std::size_t(view.buffer)].data.size();
+  if (view.byteOffset > size || view.byteLength > size - view.byteOffset) {
+    throw SceneError("bufferView " + std::to_string(i) + ": bytes " +
+                     std::to_string(view.byteOffset) + ".." +
+                     std::to_string(view.byteOffset + view.byteLength) +
+                     " lie beyond its buffer's " + std::to_string(size));
+  }
+}
+
+// What the image callback needs: the limits, and the model being parsed, whose buffers and
+// views are read before its images.
+struct ImageLoading {
+  const LoadOptions* options;
+  const tinygltf::Model* model;
+};
+
 bool decodeImageForTinygltf(tinygltf::Image* image, const int index, std::string* err, std::string*,
                             int, int, const unsigned char* bytes, int size, void* user) {
-  const LoadOptions& options = *static_cast<const LoadOptions*>(user);
+  const ImageLoading& loading = *static_cast<const ImageLoading*>(user);
+  const LoadOptions& options = *loading.options;
   try {
+    // tinygltf hands over a view's bytes without checking that they lie in its buffer.
+    if (image->bufferView >= 0) {
+      try {
+        checkBufferView(*loading.model, image->bufferView);
+      } catch (const SceneError& e) {
+        throw SceneError("image " + std::to_string(index) + ": " + e.what());
+      }
+    }
     DecodedImage d = decodeImage(bytes, size_t(std::max(size, 0)), "image " + std::to_string(index),
                                  options.maxTextureDimension, options.maxTexturePixels);
     image->width = d.width;
@@ -372,20 +403,7 @@ void checkStructure(const tinygltf::Model& model, const gltf::Converter& convert
       throw SceneError("node " + std::to_string(v) + " is part of a cycle");
     for (int c : climb) state[c] = 2;
   }
-  for (std::size_t i = 0; i < model.bufferViews.size(); ++i) {
-    const tinygltf::BufferView& view = model.bufferViews[i];
-    if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) {
-      throw SceneError("bufferView " + std::to_string(i) + ": buffer " +
-                       std::to_string(view.buffer) + " does not exist");
-    }
-    const std::size_t size = model.buffers[view.buffer].data.size();
-    if (view.byteOffset > size || view.byteLength > size - view.byteOffset) {
-      throw SceneError("bufferView " + std::to_string(i) + ": bytes " +
-                       std::to_string(view.byteOffset) + ".." +
-                       std::to_string(view.byteOffset + view.byteLength) +
-                       " lie beyond its buffer's " + std::to_string(size));
-    }
-  }
+  for (std::size_t i = 0; i < model.bufferViews.size(); ++i) checkBufferView(model, int(i));
   for (std::size_t i = 0; i < model.lights.size(); ++i) convert.light(int(i), glm::mat4(1.0f));
 }
 
@@ -414,7 +432,9 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     }
     const bool binary = isBinaryGltf(path);
     tinygltf::TinyGLTF parser;
-    parser.SetImageLoader(decodeImageForTinygltf, const_cast<LoadOptions*>(&options));
+    tinygltf::Model model;
+    ImageLoading loading{&options, &model};
+    parser.SetImageLoader(decodeImageForTinygltf, &loading);
     // Every file read goes through AssetFiles; no shell expansion of paths (tinygltf's
     // default ExpandFilePath runs wordexp), no writing.
     const std::string base = path.find_last_of("/\\") == std::string::npos
@@ -434,7 +454,6 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
                                   const std::vector<unsigned char>&, void*) { return false; };
     callbacks.user_data = &files;
     parser.SetFsCallbacks(callbacks);
-    tinygltf::Model model;
     std::string err, warn;
     std::string failure;
     try {

@@ -31,8 +31,13 @@ bool decode8(const unsigned char* bytes, std::size_t size, const char* extension
              std::int64_t maxDimension, std::int64_t maxPixels, RawImage<std::uint8_t>* out,
              std::string* error) {
   OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes), size);
-  auto in = OIIO::ImageInput::open(std::string("image") + extension, nullptr, &reader);
+  // The reader of that format alone: given a file name, OpenImageIO tries every reader it
+  // has on bytes that the named one rejects, and glTF images are PNG or JPEG, nothing else.
+  auto in = OIIO::ImageInput::create(extension + 1);  // "png", "jpg": no probing
   if (!in) return fail(error, OIIO::geterror());
+  OIIO::ImageSpec opened;
+  if (!in->set_ioproxy(&reader) || !in->open(std::string("image") + extension, opened))
+    return fail(error, in->geterror());
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1) {
     return fail(error, "image has no pixels");

@@ -186,3 +186,57 @@ TEST(AssetFiles, LinksOutOfTheFolderFifosAndOversizedFilesAreRefused) {
 
 }  // namespace
 }  // namespace manylight::testing
+
+namespace manylight::testing {
+namespace {
+
+// An image whose bytes start as a PNG or JPEG does and then go wrong is refused with its
+// decoder's message. OpenImageIO must not fall back to its other readers: the DDS reader
+// read past the end of such bytes (libFuzzer found it under AddressSanitizer, which this
+// test runs under in CI).
+TEST(Images, CorruptPngAndJpegAreRefusedByTheirOwnDecoder) {
+  namespace fs = std::filesystem;
+  const fs::path dir = testFolder() / "images";
+  fs::create_directories(dir);
+  auto scene = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(dir / name, std::ios::binary) << bytes;
+    const fs::path p = dir / (name + ".gltf");
+    std::ofstream(p) << R"({"asset": {"version": "2.0"}, "images": [{"uri": ")" << name
+                     << R"("}]})";
+    return p.string();
+  };
+  const std::string garbage(100, 'A');
+  const std::string png = scene("bad.png", std::string("\x89PNG\r\n\x1a\n", 8) + garbage);
+  const std::string jpeg = scene("bad.jpg", "\xFF\xD8\xFF" + garbage);
+  const std::string dds = scene("bad.dds", "DDS " + garbage);
+  const std::string prefix = ": image 0: cannot decode image: ";
+  EXPECT_EQ(loadError(png), png + prefix +
+                                "Read error: hit end of file PNG read error: AAAA: Read error: "
+                                "hit end of file");
+  EXPECT_EQ(loadError(jpeg),
+            jpeg + prefix + "JPEG error: Unsupported marker type 0x41 (\"image.jpg\")");
+  EXPECT_EQ(loadError(dds), dds + ": image 0: not a PNG or JPEG image");
+}
+
+// A GLB image whose bufferView runs past its buffer's byteLength (though not past the file's
+// binary chunk) is refused before any decoder reads it: tinygltf hands such bytes over
+// unchecked, and the PNG reader read beyond the buffer (libFuzzer found it; this test runs
+// under AddressSanitizer in CI).
+TEST(Images, AViewPastItsBufferIsRefusedBeforeDecoding) {
+  std::string bin = std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16) + std::string(48, '\0');
+  std::string json =
+      R"({"asset": {"version": "2.0"}, "images": [{"bufferView": 0, "mimeType": "image/png"}],)"
+      R"( "bufferViews": [{"buffer": 0, "byteLength": 64}], "buffers": [{"byteLength": 16}]})";
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  auto word = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const std::string glb = "glTF" + word(2) + word(std::uint32_t(28 + json.size() + bin.size())) +
+                          word(std::uint32_t(json.size())) + "JSON" + json +
+                          word(std::uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
+  const std::string path = (testFolder() / "past.glb").string();
+  std::ofstream(path, std::ios::binary) << glb;
+  EXPECT_EQ(loadError(path),
+            path + ": image 0: bufferView 0: bytes 0..64 lie beyond its buffer's 16");
+}
+
+}  // namespace
+}  // namespace manylight::testing
