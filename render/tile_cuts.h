@@ -97,7 +97,9 @@ class TileCutter {
   struct Result;
   const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
   static Node decode(const PackedTrees& packed, int tree, int i);
-  Result cutTile(const ShadingRegion& region, const CutRule& rule,
+  // `finest`: the group cannot be split further, so a full cut that meets the rule without
+  // the margin is shared rather than left to per-pixel cuts.
+  Result cutTile(const ShadingRegion& region, const CutRule& rule, bool finest,
                  std::vector<std::uint32_t>& entries) const;
 
   std::vector<Node> nodes_[3];  // per tree
