@@ -317,13 +317,17 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
   }
   while (!heap.empty()) {
     const float top = layout::floatOf(std::uint32_t(heap.front() >> 32));
-    if (std::isfinite(top)) {
-      const bool holds = rule.total
-                             ? (maxOf(errorSum) <= kMargin * rule.error * maxOf(sum - errorSum) ||
-                                maxOf(errorSum) <= kAbsoluteFloor)
-                             : top <= kMargin * rule.error * maxOf(sum);
-      if (holds) break;
-    }
+    // The rule's measure of the cut (its largest bound, or under the total rule their sum)
+    // and whether it meets the rule's target at the centre times `margin`.
+    const float have = rule.total ? maxOf(errorSum) : top;
+    auto target = [&](float margin) {
+      return margin * rule.error * maxOf(rule.total ? sum - errorSum : sum);
+    };
+    auto holds = [&](float margin) {
+      return std::isfinite(top) &&
+             (have <= target(margin) || (rule.total && have <= kAbsoluteFloor));
+    };
+    if (holds(kMargin)) break;
     const int size = int(heap.size() + settled.size());
     if (size + 1 > rule.maxCut || (!rule.total && 2 * size > rule.maxCut &&
                                    top > kHopeless * kMargin * rule.error * maxOf(sum))) {
@@ -332,13 +336,9 @@ TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& ru
       // meets another, 4×4 squares of 65,536 mixed lights filled up 1.0–1.5× above the
       // margin's target, and their pixels walked cuts of their own, 4,000 node bounds each).
       // Larger groups split instead: the quarters' cuts are smaller, and so cheaper per pixel.
-      if (finest && std::isfinite(top) &&
-          (rule.total ? maxOf(errorSum) <= rule.error * maxOf(sum - errorSum)
-                      : top <= rule.error * maxOf(sum)))
-        break;
+      if (finest && holds(1.0f)) break;
       result.perPixel = true;  // the tile's cut is full: its pixels cut for themselves
-      const float have = rule.total ? maxOf(errorSum) : top;
-      const float want = kMargin * rule.error * maxOf(rule.total ? sum - errorSum : sum);
+      const float want = target(kMargin);
       result.shortfall = want > 0.0f ? have / want : std::numeric_limits<float>::infinity();
       return result;
     }

@@ -33,20 +33,19 @@ std::string oneLine(std::string s) {
   return s;
 }
 
-// Throws SceneError unless bufferView `i` names a buffer and lies within it.
-void checkBufferView(const tinygltf::Model& model, int i) {
+// What is wrong with bufferView `i`: it names no buffer or does not lie within it; "" if
+// nothing.
+std::string bufferViewProblem(const tinygltf::Model& model, int i) {
   const tinygltf::BufferView& view = model.bufferViews[std::size_t(i)];
-  if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) {
-    throw SceneError("bufferView " + std::to_string(i) + ": buffer " + std::to_string(view.buffer) +
-                     " does not exist");
-  }
+  if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size())
+    return "bufferView " + std::to_string(i) + ": buffer " + std::to_string(view.buffer) +
+           " does not exist";
   const std::size_t size = model.buffers[std::size_t(view.buffer)].data.size();
-  if (view.byteOffset > size || view.byteLength > size - view.byteOffset) {
-    throw SceneError("bufferView " + std::to_string(i) + ": bytes " +
-                     std::to_string(view.byteOffset) + ".." +
-                     std::to_string(view.byteOffset + view.byteLength) +
-                     " lie beyond its buffer's " + std::to_string(size));
-  }
+  if (view.byteOffset > size || view.byteLength > size - view.byteOffset)
+    return "bufferView " + std::to_string(i) + ": bytes " + std::to_string(view.byteOffset) + ".." +
+           std::to_string(view.byteOffset + view.byteLength) + " lie beyond its buffer's " +
+           std::to_string(size);
+  return "";
 }
 
 // What the image callback needs: the limits, and the model being parsed, whose buffers and
@@ -63,11 +62,8 @@ bool decodeImageForTinygltf(tinygltf::Image* image, const int index, std::string
   try {
     // tinygltf hands over a view's bytes without checking that they lie in its buffer.
     if (image->bufferView >= 0) {
-      try {
-        checkBufferView(*loading.model, image->bufferView);
-      } catch (const SceneError& e) {
-        throw SceneError("image " + std::to_string(index) + ": " + e.what());
-      }
+      const std::string problem = bufferViewProblem(*loading.model, image->bufferView);
+      if (!problem.empty()) throw SceneError("image " + std::to_string(index) + ": " + problem);
     }
     DecodedImage d = decodeImage(bytes, size_t(std::max(size, 0)), "image " + std::to_string(index),
                                  options.maxTextureDimension, options.maxTexturePixels);
@@ -403,7 +399,10 @@ void checkStructure(const tinygltf::Model& model, const gltf::Converter& convert
       throw SceneError("node " + std::to_string(v) + " is part of a cycle");
     for (int c : climb) state[c] = 2;
   }
-  for (std::size_t i = 0; i < model.bufferViews.size(); ++i) checkBufferView(model, int(i));
+  for (std::size_t i = 0; i < model.bufferViews.size(); ++i) {
+    const std::string problem = bufferViewProblem(model, int(i));
+    if (!problem.empty()) throw SceneError(problem);
+  }
   for (std::size_t i = 0; i < model.lights.size(); ++i) convert.light(int(i), glm::mat4(1.0f));
 }
 

@@ -35,10 +35,9 @@ bool decode8(const unsigned char* bytes, std::size_t size, const char* extension
   // has on bytes that the named one rejects, and glTF images are PNG or JPEG, nothing else.
   auto in = OIIO::ImageInput::create(extension + 1);  // "png", "jpg": no probing
   if (!in) return fail(error, OIIO::geterror());
-  OIIO::ImageSpec opened;
-  if (!in->set_ioproxy(&reader) || !in->open(std::string("image") + extension, opened))
+  OIIO::ImageSpec spec;
+  if (!in->set_ioproxy(&reader) || !in->open(std::string("image") + extension, spec))
     return fail(error, in->geterror());
-  const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1) {
     return fail(error, "image has no pixels");
   }
