@@ -5,9 +5,96 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <mutex>
 
 namespace manylight {
 namespace {
+
+// libpng writes "libpng error: ..." to stderr before OpenImageIO's PNG reader reports the
+// same error (OpenImageIO's handler notes the message and returns, so libpng's default
+// handler prints it and unwinds): a corrupt PNG gave one to three such lines before
+// manylight's own one-line error. While OpenImageIO works, stderr (the process's file
+// descriptor 2) goes to an anonymous file; when the last guard leaves, what was written
+// there meanwhile goes on to stderr without libpng's lines (OpenImageIO's errors come back
+// as text and are reported once). Other threads' lines are held back, not lost: a batch
+// decodes the next scene's textures while it renders and reports the one before.
+//
+// Not under AddressSanitizer: its report of a fault inside a decoder would land in the held
+// file and be lost with the process (CI's sanitizer and fuzzing runs read that report).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kHoldStderr = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kHoldStderr = false;
+#else
+constexpr bool kHoldStderr = true;
+#endif
+#else
+constexpr bool kHoldStderr = true;
+#endif
+
+class QuietLibpng {
+ public:
+  QuietLibpng() {
+    if (!kHoldStderr) return;
+    const std::lock_guard<std::mutex> lock(state().mutex);
+    State& s = state();
+    if (s.depth++ > 0) return;
+    std::fflush(stderr);
+    s.held = ::memfd_create("manylight-stderr", MFD_CLOEXEC);
+    s.saved = s.held >= 0 ? ::dup(STDERR_FILENO) : -1;
+    if (s.saved >= 0) ::dup2(s.held, STDERR_FILENO);
+  }
+  ~QuietLibpng() {
+    if (!kHoldStderr) return;
+    const std::lock_guard<std::mutex> lock(state().mutex);
+    State& s = state();
+    if (--s.depth > 0) return;
+    std::fflush(stderr);
+    if (s.saved >= 0) {
+      ::dup2(s.saved, STDERR_FILENO);
+      ::close(s.saved);
+      std::string text;
+      char buffer[4096];
+      for (ssize_t n; (n = ::pread(s.held, buffer, sizeof buffer, off_t(text.size()))) > 0;)
+        text.append(buffer, std::size_t(n));
+      for (std::size_t at = 0; at < text.size();) {
+        const std::size_t end = std::min(text.find('\n', at), text.size() - 1) + 1;
+        if (text.compare(at, 7, "libpng ") != 0) writeAll(text.data() + at, end - at);
+        at = end;
+      }
+    }
+    if (s.held >= 0) ::close(s.held);
+    s.held = s.saved = -1;
+  }
+  QuietLibpng(const QuietLibpng&) = delete;
+  QuietLibpng& operator=(const QuietLibpng&) = delete;
+
+ private:
+  struct State {
+    std::mutex mutex;
+    int depth = 0;
+    int held = -1;   // the anonymous file that stands in for stderr
+    int saved = -1;  // stderr itself
+  };
+  static State& state() {
+    static State s;
+    return s;
+  }
+  static void writeAll(const char* p, std::size_t n) {
+    while (n > 0) {
+      const ssize_t w = ::write(STDERR_FILENO, p, n);
+      if (w <= 0) return;
+      p += w;
+      n -= std::size_t(w);
+    }
+  }
+};
 
 bool fail(std::string* error, const std::string& reason) {
   *error = reason.empty() ? "unknown error" : reason;
@@ -30,6 +117,7 @@ bool readPixels(OIIO::ImageInput& in, OIIO::TypeDesc type, RawImage<T>* out, std
 bool decode8(const unsigned char* bytes, std::size_t size, const char* extension,
              std::int64_t maxDimension, std::int64_t maxPixels, RawImage<std::uint8_t>* out,
              std::string* error) {
+  const QuietLibpng quiet;
   OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes), size);
   // The reader of that format alone: given a file name, OpenImageIO tries every reader it
   // has on bytes that the named one rejects, and glTF images are PNG or JPEG, nothing else.
@@ -58,6 +146,7 @@ bool decode8(const unsigned char* bytes, std::size_t size, const char* extension
 template <typename T>
 bool write(const char* path, const RawImage<T>& image, OIIO::TypeDesc type, const char* colourSpace,
            std::string* error, OIIO::Filesystem::IOProxy* proxy = nullptr) {
+  const QuietLibpng quiet;
   auto out = OIIO::ImageOutput::create(path, proxy);
   if (!out) return fail(error, OIIO::geterror());
   OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
@@ -85,6 +174,7 @@ bool writeLinearFloat(const char* path, const RawImage<float>& image, std::strin
 }
 
 bool readFloat(const char* path, RawImage<float>* out, std::string* error) {
+  const QuietLibpng quiet;
   auto in = OIIO::ImageInput::open(path);
   if (!in) return fail(error, OIIO::geterror());
   return readPixels(*in, OIIO::TypeDesc::FLOAT, out, error);
@@ -113,6 +203,7 @@ bool compareBuffers(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, double thr
 
 bool compareFiles(const char* a, const char* b, double threshold, const char* diffPath,
                   double diffScale, ImageComparison* out, std::string* error) {
+  const QuietLibpng quiet;
   OIIO::ImageBuf images[2] = {OIIO::ImageBuf(a), OIIO::ImageBuf(b)};
   for (int i = 0; i < 2; ++i) {
     if (!images[i].read(0, 0, true, OIIO::TypeDesc::FLOAT)) {

@@ -118,6 +118,26 @@ TEST(Cli, CompareAssertsARenderAgainstAStoredImage) {
   EXPECT_EQ(r.err.rfind("manylight: " + missing + ": cannot read image: ", 0), 0u) << r.err;
 }
 
+// libpng prints "libpng error: ..." lines of its own for a corrupt PNG before OpenImageIO
+// reports the error (one line before a texture's error, three before compare's). Each
+// error stays one line, the program's own.
+TEST(Cli, ACorruptPngGivesOneLineOfError) {
+  const fs::path dir = testFolder();
+  const std::string png = (dir / "bad.png").string(), out = (dir / "out.png").string();
+  std::ofstream(png, std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8) << "this is no PNG";
+  const std::string scene =
+      writeText("bad.gltf", R"({"asset": {"version": "2.0"}, "images": [{"uri": "bad.png"}]})");
+  const std::string why = "PNG read error: [20]is[20]: invalid chunk type\n";
+  ProcessResult r = manylight("render " + scene + " -o " + out);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "manylight: " + scene + ": image 0: cannot decode image: " + why);
+  EXPECT_FALSE(fs::exists(out));
+  r = manylight("compare " + png + " " + png);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "manylight: " + png + ": cannot read image: Invalid image file \"" + png +
+                       "\": " + why);
+}
+
 TEST(Cli, BatchesRenderEverySceneInOneProcess) {
   const fs::path dir = testFolder();
   std::vector<std::string> scenes;
