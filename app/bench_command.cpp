@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <set>
 #include <sstream>
@@ -186,7 +187,25 @@ Scene sweepScene(const std::string& path) {
 
 constexpr std::uintmax_t kMaxResultBytes = 1u << 28;
 
-// --resume: the cases already measured in a.json with the same settings as `json`, whose
+// This program's build: FNV-1a over its executable's bytes, in hex ("unknown" when it cannot
+// be read). --resume keeps only runs of the same build: a results file from an older one
+// (a copied folder, a rebuilt binary) would mix two programs' numbers in one chart.
+std::string buildId() {
+  std::ifstream exe("/proc/self/exe", std::ios::binary);
+  if (!exe) return "unknown";
+  std::uint64_t h = 1469598103934665603ull;
+  std::vector<char> chunk(1 << 16);
+  while (exe.read(chunk.data(), std::streamsize(chunk.size())) || exe.gcount() > 0) {
+    for (std::streamsize i = 0; i < exe.gcount(); ++i)
+      h = (h ^ static_cast<unsigned char>(chunk[std::size_t(i)])) * 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+// --resume: the cases already measured in a.json with the same settings, build and GL
+// renderer as `json`, whose
 // runs (and rows of a.csv) are kept in `json` and `csv`. Throws Error when the files
 // disagree with the settings.
 std::set<std::string> resumeFrom(const BenchArgs& a, nlohmann::json* json, std::string* csv) {
@@ -199,8 +218,8 @@ std::set<std::string> resumeFrom(const BenchArgs& a, nlohmann::json* json, std::
   } catch (const nlohmann::json::exception& e) {
     throw Error(a.json + ": cannot resume: " + e.what());
   }
-  for (const char* key :
-       {"suite", "width", "height", "repeats", "reference_seconds", "max_cut", "cut_tile"}) {
+  for (const char* key : {"suite", "width", "height", "repeats", "reference_seconds", "max_cut",
+                          "cut_tile", "build", "gl_renderer"}) {
     if (!before.contains(key) || before[key] != (*json)[key])
       throw Error(a.json + ": cannot resume: it was measured with another " + key +
                   "; remove it or run without --resume");
@@ -263,7 +282,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       ->check(CLI::Range(1, kMaxCutLimit));
   bench->add_flag("--resume", a.resume,
                   "Keep the cases already in --json (and --csv) from an interrupted run with the "
-                  "same settings, and run only the others");
+                  "same settings, build and GL renderer, and run only the others");
   bench->add_option("--frames", a.frames, "stability: frames of the turntable (0: none)")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
@@ -347,6 +366,7 @@ int runBench(const BenchArgs& a) {
       {"cut_tile", LightcutsSettings{}.tileSize},
       {"backend", context->backend()},
       {"gl_renderer", context->renderer()},
+      {"build", buildId()},
       {"hardware_threads", std::thread::hardware_concurrency()},
       {"runs", nlohmann::json::array()},
   };

@@ -7,7 +7,8 @@
 #                             every method, ε and mode (about 2.5 hours on the 2-core machine):
 #                             what docs/ shows today
 #   bench/sweep.sh --quick    the same at 320x240 (about 1 hour)
-#   bench/sweep.sh --resume   go on with an interrupted sweep: finished cases are kept
+#   bench/sweep.sh --resume   go on with an interrupted sweep: finished cases are kept (the
+#                             same build's only: manylight refuses another build's results)
 #   bench/sweep.sh --report   only redraw the charts and pages from docs/results/
 # Results (CSV and JSON) go to docs/results/, rewritten after every case.
 set -euo pipefail

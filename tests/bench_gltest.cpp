@@ -132,6 +132,21 @@ TEST(Cli, BenchWritesEveryRunAsCsvAndJson) {
   EXPECT_EQ(resumed.substr(0, csv.size()), csv);
   EXPECT_EQ(std::count(resumed.begin(), resumed.end(), '\n'), 1 + 6 * 3);
   EXPECT_EQ(nlohmann::json::parse(readFile(dir / "s.json"))["runs"].size(), 18u);
+
+  // Results of another build (or GL renderer) are not resumed: they would mix two programs'
+  // numbers.
+  auto older = nlohmann::json::parse(readFile(dir / "s.json"));
+  EXPECT_EQ(older["build"].get<std::string>().size(), 16u);
+  older["build"] = "0123456789abcdef";
+  std::ofstream(dir / "s.json") << older.dump();
+  const ProcessResult refused = manylight(
+      "bench --layouts uniform --counts 8 --methods reference --size 32x24 --repeats 1 --resume "
+      "--json " +
+      (dir / "s.json").string());
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_EQ(refused.err, "manylight: " + (dir / "s.json").string() +
+                             ": cannot resume: it was measured with another build; remove it or "
+                             "run without --resume\n");
 }
 
 TEST(Cli, BenchRefusesBadRequestsInOneLine) {
