@@ -101,6 +101,7 @@ struct PlayArgs {
   float orbit = 360.0f, exposure = 0.0f, fps = 30.0f;
   SceneArgs input;
   bool verbose = false;
+  bool freshCuts = false;  // lightcuts: every frame's shared cuts per square, none kept
 };
 
 int runPlay(const PlayArgs& a, Clock::time_point processStart);

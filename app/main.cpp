@@ -85,6 +85,10 @@ int main(int argc, char** argv) {
   addSceneOptions(playCmd, p.input);
   playCmd->add_option("--stats", p.statsPath,
                       "Write per-frame times and facts about the playback as JSON");
+  playCmd->add_flag("--fresh-cuts", p.freshCuts,
+                    "Lightcuts: find every frame's shared cuts per square of the screen, as "
+                    "render does, instead of keeping cuts per cell of the scene from frame to "
+                    "frame");
   playCmd->add_flag("-v,--verbose", p.verbose, "Say which context was chosen and the frame rate");
   BakeArgs b;
   CLI::App* bake = app.add_subcommand("bake",

@@ -75,6 +75,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   request.frames = a.frames;
   request.fps = a.fps;
   request.orbitDegrees = a.orbit;
+  request.keepCuts = !a.freshCuts;
   const gl::Backend backend = gl::parseBackend(a.backend);
 
   const auto loadStart = Clock::now();
@@ -144,7 +145,11 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         {"interrupted", gInterrupted.load()},
         {"output_closed", outputClosed},
         {"total_ms", msSince(processStart)}};
-    if (r.method != Method::Reference) stats["frame_cut_ms"] = out.cutMs;
+    if (r.method != Method::Reference) {
+      stats["frame_cut_ms"] = out.cutMs;
+      stats["frame_cuts_made"] = out.cutsMade;
+      stats["frame_cuts_kept"] = out.cutsKept;
+    }
     writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
   if (gInterrupted) {

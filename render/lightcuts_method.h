@@ -9,6 +9,7 @@
 #include "bake/light_tree.h"
 #include "bake/light_tree_pack.h"
 #include "gl/texture_buffer.h"
+#include "render/cell_cuts.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
 #include "render/tile_cuts.h"
@@ -26,6 +27,10 @@ struct LightcutsSettings {
   // them (render/tile_cuts.h); 1: every pixel finds its own cut. Not for the distance
   // criterion.
   int tileSize = 16;
+  // Playback: the shared cuts are per cell of the scene and kept from frame to frame
+  // (render/cell_cuts.h) instead of per square of the screen, found again only where the
+  // camera shows new places. For the frames of one scene whose lights and geometry stay put.
+  bool keepCuts = false;
   TreeOptions trees;  // how the trees are built and packed (used when they are built)
 };
 
@@ -71,6 +76,10 @@ class LightcutsMethod {
   // Milliseconds the last light() call spent finding shared cuts on the CPU and uploading
   // them, after the G-buffer was read back (0 without shared cuts).
   double cutMs() const { return cutMs_; }
+  // Of the last light() call's shared cuts: how many were found, and how many were kept from
+  // earlier frames (LightcutsSettings::keepCuts).
+  int cutsMade() const { return cutsMade_; }
+  int cutsKept() const { return cutsKept_; }
 
   // The node colour coding of the packed trees: its fit and the error it adds.
   const NodeColourCoder& nodeColour() const { return layout_.colour; }
@@ -83,12 +92,14 @@ class LightcutsMethod {
 
   PackedTrees layout_;  // bases, leaf counts, colour coding (the words are dropped after upload)
   gl::TextureBuffer nodes_;
-  std::unique_ptr<TileCutter> tileCutter_;  // null for the distance criterion
-  mutable gl::TextureBuffer tileCuts_;      // this frame's (render/tile_cuts.h)
-  gl::Texture cutOfPixel_;                  // this frame's cut per pixel (R32UI)
-  mutable TileCuts tileInfo_;               // its counts (the texels are dropped)
+  std::unique_ptr<TileCutter> tileCutter_;   // null for the distance criterion
+  mutable std::unique_ptr<CellCuts> cells_;  // made by the first frame with keepCuts
+  mutable gl::TextureBuffer tileCuts_;       // this frame's (render/tile_cuts.h)
+  gl::Texture cutOfPixel_;                   // this frame's cut per pixel (R32UI)
+  mutable TileCuts tileInfo_;                // its counts (the texels are dropped)
   mutable std::vector<float> readback_;
   mutable double cutMs_ = 0.0;
+  mutable int cutsMade_ = 0, cutsKept_ = 0;
   bool distance_;
   int width_, height_;
   gl::Texture statsTarget_;

@@ -12,6 +12,7 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
   PlaybackOutcome out;
   const RenderRequest& r = request.frame;
   PreparedRender p(scene, r);
+  p.settings.lightcuts.keepCuts = request.keepCuts;
   const Camera& start = p.camera;
   out.framed = p.framed;
   out.defaultRig = p.defaultRig;
@@ -34,10 +35,13 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
       camera = orbitCamera(start, centre, sweep * float(i) / float(frames));
     }
     FrameStats stats;
-    p.settings.readCutStats = i == 0;  // a readback of the whole statistics target; reported once
+    // A readback of the whole statistics target: the first frame only, unless asked for.
+    p.settings.readCutStats = i == 0 || request.cutStatsEveryFrame;
     const Image image = p.renderer->render(makeView(camera, r.width, r.height), p.settings, &stats);
     out.renderMs.push_back(stats.renderMs);
     out.cutMs.push_back(stats.cutMs);
+    out.cutsMade.push_back(stats.cutsMade);
+    out.cutsKept.push_back(stats.cutsKept);
     if (i == 0) out.firstFrameCuts = stats.cuts;
     ++out.framesRendered;
     if (!sink(i, image, stats)) break;

@@ -16,6 +16,12 @@ struct PlaybackRequest {
   int frames = 0;       // 0: the animation's length at `fps` (to its last key), or 120 for an orbit
   float fps = 30.0f;
   float orbitDegrees = 360.0f;  // swept over all frames (frame i at i/frames of it)
+  // Lightcuts: shared cuts per cell of the scene, kept from frame to frame
+  // (LightcutsSettings::keepCuts); false: per square of the screen, every frame anew.
+  bool keepCuts = true;
+  // Lightcuts: read every frame's cut statistics back into its FrameStats, not only the first
+  // frame's (each is a readback of a whole float target).
+  bool cutStatsEveryFrame = false;
 };
 
 struct PlaybackOutcome {
@@ -25,8 +31,9 @@ struct PlaybackOutcome {
   bool defaultRig = false;  // no lights: the default rig, fixed to the first frame's camera
   std::size_t lightCount = 0;
   double bakeMs = 0.0;
-  std::vector<double> renderMs;  // per frame
-  std::vector<double> cutMs;     // per frame: of renderMs, lightcuts' shared cuts on the CPU
+  std::vector<double> renderMs;         // per frame
+  std::vector<double> cutMs;            // per frame: of renderMs, lightcuts' shared cuts on the CPU
+  std::vector<int> cutsMade, cutsKept;  // per frame: shared cuts found, and kept
   CutStats firstFrameCuts;
 };
 

@@ -192,6 +192,8 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
     stats->renderMs = std::chrono::duration<double, std::milli>(end - start).count();
     stats->lightingPasses = passes;
     stats->cutMs = lightcuts_ ? lightcuts_->cutMs() : 0.0;
+    stats->cutsMade = lightcuts_ ? lightcuts_->cutsMade() : 0;
+    stats->cutsKept = lightcuts_ ? lightcuts_->cutsKept() : 0;
     if (lightcuts_ && settings.readCutStats) stats->cuts = lightcuts_->cutStats();
   }
   return image;

@@ -39,6 +39,7 @@ std::vector<bool> rowsLit(int height, int rowBandStride);
 struct FrameStats {
   double renderMs = 0.0;  // G-buffer + lighting passes, bracketed by glFinish
   double cutMs = 0.0;     // of which lightcuts' shared cuts on the CPU (LightcutsMethod::cutMs)
+  int cutsMade = 0, cutsKept = 0;  // shared cuts found, and kept from earlier frames
   int lightingPasses = 0;
   CutStats cuts;  // lightcuts methods only
 };

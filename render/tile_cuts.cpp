@@ -40,17 +40,21 @@ float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
 }  // namespace
 
-struct TileCutter::Result {
-  int counts[3] = {0, 0, 0};  // entries per tree, besides the far field
-  int folded = 0;             // entries in the far field
-  glm::vec3 check{0.0f};
-  bool perPixel = false;
-  long long bounds = 0;
-  float shortfall = 0.0f;  // a full cut: how far its measure was above the rule's target
-};
+std::size_t RegionCut::entryTexels() const {
+  return std::size_t(2 * (counts[0] + counts[1]) + 3 * counts[2] +
+                     (folded > 0 ? kFarFieldTexels : 0));
+}
 
-TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& rule,
-                         int threads) const {
+void RegionCut::writeHeader(std::uint32_t firstEntryTexel, std::uint32_t* words) const {
+  const std::uint32_t header[8] = {firstEntryTexel,          std::uint32_t(counts[0]),
+                                   std::uint32_t(counts[1]), std::uint32_t(counts[2]),
+                                   layout::wordOf(check.x),  layout::wordOf(check.y),
+                                   layout::wordOf(check.z),  std::uint32_t(folded)};
+  std::copy_n(header, 8, words);
+}
+
+TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& rule, int threads,
+                         const std::vector<std::uint8_t>* only) const {
   TileCuts out;
   const int fine = std::min(kFinestTile, tileSize);
   out.cutOfPixel.assign(std::size_t(px.width) * px.height, kNoSharedCut);
@@ -61,7 +65,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   // Per thread: its cuts (numbered in order; cutOfPixel holds these numbers until the merge)
   // and their entries.
   struct Part {
-    std::vector<Result> cuts;
+    std::vector<RegionCut> cuts;
     std::vector<std::size_t> entry;  // each cut's first word in `entries`
     std::vector<std::uint32_t> entries;
     long long bounds = 0;  // split groups' too
@@ -86,6 +90,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
       for (int y = top.y0; y < std::min(top.y0 + tileSize, px.height); ++y) {
         for (int x = top.x0; x < std::min(top.x0 + tileSize, px.width); ++x) {
           const std::size_t i = std::size_t(y) * px.width + x;
+          if (only && !(*only)[i]) continue;
           const float* ks = px.specular + 4 * i;
           // Specular pixels' bounds are not per unit albedo: they cut for themselves.
           if (px.normal[4 * i + 3] != 0.0f && ks[0] == 0.0f && ks[1] == 0.0f && ks[2] == 0.0f)
@@ -100,10 +105,10 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
         const bool cone = shadingRegion(px, group.pixels, g);
         // Normals over 90° apart leave no cosine bound: split without trying.
         const bool tried = cone && g.cosSpread >= 0.0f;
-        Result result;
+        RegionCut result;
         const std::size_t entry = part.entries.size();
         if (tried) {
-          result = cutTile(g, rule, group.size <= fine, part.entries);
+          result = cutRegion(g, rule, group.size <= fine, part.entries);
           part.bounds += result.bounds;
         }
         if (tried && !result.perPixel) {
@@ -175,14 +180,9 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   std::uint32_t* head = out.texels.data();
   for (const Part& part : parts) {
     for (std::size_t k = 0; k < part.cuts.size(); ++k, head += 8) {
-      const Result& r = part.cuts[k];
-      const std::uint32_t words[8] = {std::uint32_t(next),        std::uint32_t(r.counts[0]),
-                                      std::uint32_t(r.counts[1]), std::uint32_t(r.counts[2]),
-                                      layout::wordOf(r.check.x),  layout::wordOf(r.check.y),
-                                      layout::wordOf(r.check.z),  std::uint32_t(r.folded)};
-      std::copy_n(words, 8, head);
-      const std::size_t texels = std::size_t(2 * (r.counts[0] + r.counts[1]) + 3 * r.counts[2] +
-                                             (r.folded > 0 ? kFarFieldTexels : 0));
+      const RegionCut& r = part.cuts[k];
+      r.writeHeader(std::uint32_t(next), head);
+      const std::size_t texels = r.entryTexels();
       std::copy_n(part.entries.data() + part.entry[k], texels * 4, out.texels.data() + next * 4);
       next += texels;
     }
@@ -190,9 +190,9 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   return out;
 }
 
-TileCutter::Result TileCutter::cutTile(const ShadingRegion& g, const CutRule& rule, bool finest,
-                                       std::vector<std::uint32_t>& entries) const {
-  Result result;
+RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, bool finest,
+                                std::vector<std::uint32_t>& entries) const {
+  RegionCut result;
   const glm::vec3 centre = 0.5f * (g.pMin + g.pMax);
   const float slackRate = float(colour_.slack), slackFloor = float(colour_.slackFloor);
 

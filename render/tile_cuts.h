@@ -57,7 +57,7 @@ struct CutRule {
 //                         axis and cone scale, the node's intensity RGB and the cone
 //                         offset (as the light texture holds them)
 // A cut belongs to a group of pixels: a square, or the pixels of one surface in a square
-// (render/pixel_groups.h).
+// (render/pixel_groups.h), or in playback a cell of the scene (render/cell_cuts.h).
 struct TileCuts {
   std::vector<std::uint32_t> cutOfPixel;  // per pixel
   std::vector<std::uint32_t> texels;      // 4 words each
@@ -68,6 +68,21 @@ struct TileCuts {
 };
 
 inline constexpr std::uint32_t kNoSharedCut = 0xffffffffu;
+
+// One group's cut, as TileCutter::cutRegion finds it; its entries are written apart.
+struct RegionCut {
+  int counts[3] = {0, 0, 0};  // entries per tree, besides the far field
+  int folded = 0;             // entries in the far field
+  glm::vec3 check{0.0f};      // U (node rule) or B (total rule) per unit albedo
+  bool perPixel = false;      // full: the group's pixels cut for themselves
+  long long bounds = 0;       // node bounds evaluated
+  float shortfall = 0.0f;     // a full cut: how far its measure was above the rule's target
+
+  // Its entries' texels (far field included).
+  std::size_t entryTexels() const;
+  // Its two header texels (TileCuts), its entries starting at texel `firstEntryTexel`.
+  void writeHeader(std::uint32_t firstEntryTexel, std::uint32_t* words) const;
+};
 // A group whose cut would exceed the maximum is split into its surfaces while its normals
 // spread wider than this (cosine to their mean), else into quarters down to this size.
 inline constexpr float kSurfaceSpread = 0.9f;
@@ -78,8 +93,16 @@ class TileCutter {
   // Decodes the nodes of `packed`, the trees of `lights`.
   TileCutter(const PackedTrees& packed, const std::vector<Light>& lights);
 
-  // Cuts for every tile of the frame, on `threads` threads.
-  TileCuts cut(const GBufferPixels& pixels, int tileSize, const CutRule& rule, int threads) const;
+  // Cuts for every tile of the frame, on `threads` threads; only for the pixels marked in
+  // `only` (one byte per pixel) when it is given.
+  TileCuts cut(const GBufferPixels& pixels, int tileSize, const CutRule& rule, int threads,
+               const std::vector<std::uint8_t>* only = nullptr) const;
+
+  // The cut of one group of shading points, `region`, its entries appended to `entries`.
+  // `finest`: the group cannot be split further, so a full cut that meets the rule without
+  // the margin is shared rather than left to per-pixel cuts.
+  RegionCut cutRegion(const ShadingRegion& region, const CutRule& rule, bool finest,
+                      std::vector<std::uint32_t>& entries) const;
 
  private:
   // A node as glsl/light_tree.glsl's fetchNode reads it, decoded once.
@@ -94,13 +117,8 @@ class TileCutter {
     glm::vec3 repPoint{0.0f}, repAxis{0.0f};
     float repInvRange2 = 0.0f, repCos = 0.0f, repConeScale = 0.0f, repConeOffset = 0.0f;
   };
-  struct Result;
   const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
   static Node decode(const PackedTrees& packed, int tree, int i);
-  // `finest`: the group cannot be split further, so a full cut that meets the rule without
-  // the margin is shared rather than left to per-pixel cuts.
-  Result cutTile(const ShadingRegion& region, const CutRule& rule, bool finest,
-                 std::vector<std::uint32_t>& entries) const;
 
   std::vector<Node> nodes_[3];  // per tree
   int leaves_[3];

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "render/playback.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
 #include "scene/light_layouts.h"
@@ -27,7 +28,10 @@ struct Errors {
   double averageCut = 0.0;
 };
 
-// Per pixel: max over channels of |cut − reference| / max over channels of reference.
+Errors compareImages(const Image& image, const Image& reference, const CutStats& cuts,
+                     double epsilon);
+
+// `lights` in `room` through `method` and `mode`, against the reference (compareImages).
 Errors compareWithReference(const Scene& room, const std::vector<Light>& lights, ErrorMode mode,
                             double epsilon, const std::string& name,
                             Method method = Method::Lightcuts,
@@ -44,15 +48,26 @@ Errors compareWithReference(const Scene& room, const std::vector<Light>& lights,
   request.lightcuts.maxCut = kMaxCut;
   request.lightcuts.trees.nodeColour = coding;
   const RenderOutcome cut = renderScene(scene, request);
+  Errors e = compareImages(cut.image, reference.image, cut.frame.cuts, epsilon);
+  std::cout << name << ": " << e.compared << " pixels, worst " << e.worst << ", p99 " << e.p99
+            << ", average cut " << e.averageCut << ", at max cut " << e.atMaxCut
+            << ", node colour slack " << cut.nodeColour.slack << "\n";
+  return e;
+}
+
+// Per pixel: max over channels of |image − reference| / max over channels of reference;
+// pixels whose cut hit the maximum (`cuts`) are counted apart.
+Errors compareImages(const Image& image, const Image& reference, const CutStats& cuts,
+                     double epsilon) {
   Errors e;
-  e.averageCut = cut.frame.cuts.averageCut;
+  e.averageCut = cuts.averageCut;
   std::vector<double> relative;
   for (int y = 0; y < kHeight; ++y) {
     for (int x = 0; x < kWidth; ++x) {
-      const float* r = reference.image.pixel(x, y);
-      const float* c = cut.image.pixel(x, y);
+      const float* r = reference.pixel(x, y);
+      const float* c = image.pixel(x, y);
       if (r[3] == 0.0f) continue;  // background
-      if (cut.frame.cuts.atMaxCut[std::size_t(y) * kWidth + x]) {
+      if (cuts.atMaxCut[std::size_t(y) * kWidth + x]) {
         ++e.atMaxCut;
         continue;
       }
@@ -70,9 +85,6 @@ Errors compareWithReference(const Scene& room, const std::vector<Light>& lights,
     std::sort(relative.begin(), relative.end());
     e.p99 = relative[std::size_t(0.99 * double(relative.size() - 1))];
   }
-  std::cout << name << ": " << e.compared << " pixels, worst " << e.worst << ", p99 " << e.p99
-            << ", average cut " << e.averageCut << ", at max cut " << e.atMaxCut
-            << ", node colour slack " << cut.nodeColour.slack << "\n";
   return e;
 }
 
@@ -162,6 +174,43 @@ TEST_F(LightcutsTest, NodeRuleErrorsAreMeasured) {
        runCases(*room_, *specularRoom_, Method::Lightcuts, ErrorMode::Node, "node/")) {
     EXPECT_GT(e.compared, 0);
   }
+}
+
+// Playback keeps its shared cuts per cell of the scene from frame to frame
+// (render/cell_cuts.h): along an orbit, every frame keeps the total rule's guarantee against
+// the reference of the same view, and later frames keep most of their cuts.
+TEST_F(LightcutsTest, KeptCutsHoldTheTotalRuleFrameByFrame) {
+  Scene scene = *room_;
+  scene.lights = layoutLights(LightLayout::Mixed, 3000, 7);
+  PlaybackRequest request;
+  request.frame.width = kWidth;
+  request.frame.height = kHeight;
+  request.frames = 8;
+  request.orbitDegrees = 90.0f;
+  std::vector<Image> reference;
+  play(scene, request, [&](int, const Image& image, const FrameStats&) {
+    reference.push_back(image);
+    return true;
+  });
+  request.frame.method = Method::Lightcuts;
+  request.frame.lightcuts.mode = ErrorMode::Total;
+  request.frame.lightcuts.maxCut = kMaxCut;
+  request.cutStatsEveryFrame = true;
+  int frames = 0;
+  const PlaybackOutcome out =
+      play(scene, request, [&](int i, const Image& image, const FrameStats& stats) {
+        const Errors e = compareImages(image, reference[std::size_t(i)], stats.cuts, 0.02);
+        std::cout << "kept cuts, frame " << i << ": " << e.compared << " pixels, worst " << e.worst
+                  << ", cuts made " << stats.cutsMade << ", kept " << stats.cutsKept << "\n";
+        EXPECT_EQ(e.failing, 0) << "frame " << i << ": worst " << e.worst;
+        EXPECT_LE(e.atMaxCut, (e.compared + e.atMaxCut) / 100) << "frame " << i;
+        ++frames;
+        return true;
+      });
+  EXPECT_EQ(frames, 8);
+  ASSERT_EQ(out.cutsKept.size(), 8u);
+  EXPECT_EQ(out.cutsKept[0], 0);
+  for (int i = 1; i < 8; ++i) EXPECT_GT(out.cutsKept[std::size_t(i)], out.cutsMade[std::size_t(i)]);
 }
 
 TEST_F(LightcutsTest, DistanceCriterionErrorsAreMeasured) {

@@ -15,6 +15,7 @@
 #include "bake/light_tree.h"
 #include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
+#include "render/cell_cuts.h"
 #include "render/cut_heap.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
@@ -28,16 +29,16 @@ constexpr int kSize = 64;
 
 // A G-buffer of a floor (y = 0, facing up) on the left, with a patch of ceiling showing
 // through it, a wall (x = 3, facing −x) on the right, and a band of background at the top;
-// rows bottom-up as GL reads them.
+// rows bottom-up as GL reads them. `pan` moves the view along z (a camera moving sideways).
 struct SyntheticGBuffer {
   std::vector<float> position, normal, specular;
-  SyntheticGBuffer()
+  explicit SyntheticGBuffer(float pan = 0.0f)
       : position(kSize * kSize * 4), normal(kSize * kSize * 4), specular(kSize * kSize * 4) {
     for (int y = 0; y < kSize; ++y) {
       for (int x = 0; x < kSize; ++x) {
         const std::size_t i = (std::size_t(y) * kSize + x) * 4;
         if (y >= kSize - 6) continue;  // background
-        const float u = float(x) / kSize, v = float(y) / kSize;
+        const float u = float(x) / kSize, v = float(y) / kSize + pan / 6.0f;
         glm::vec3 p, n;
         if (x < kSize * 5 / 8 && y >= 40 && y < 48 && (x + y) % 3 == 0) {
           // A patch of the ceiling seen through gaps: squares whose normals spread 180°.
@@ -95,17 +96,15 @@ struct Checked {
   double worstOverBound = 0.0;  // largest error / bound
 };
 
-Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tileSize,
-                       int maxCut = 8000) {
-  const SyntheticGBuffer g;
-  const PackedTrees packed = packLightTrees(buildLightTrees(lights));
-  const TileCutter cutter(packed, lights);
+// Evaluates every shared cut of `cuts` at each of its pixels of `g` in double precision
+// against the exact sum of `lights`.
+Checked checkCuts(const SyntheticGBuffer& g, const std::vector<Light>& lights,
+                  const TileCuts& cuts) {
   std::map<std::array<float, 3>, std::size_t> spotAt;  // positions are distinct
   for (std::size_t i = 0; i < lights.size(); ++i) {
     if (lights[i].type == LightType::Spot)
       spotAt[{lights[i].position.x, lights[i].position.y, lights[i].position.z}] = i;
   }
-  const TileCuts cuts = cutter.cut(g.pixels(), tileSize, CutRule{epsilon, true, maxCut}, 2);
   EXPECT_EQ(cuts.cutOfPixel.size(), std::size_t(kSize * kSize));
   Checked c;
   std::map<std::uint32_t, glm::dvec3> normalOfCut;  // its first pixel's
@@ -166,6 +165,13 @@ Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tile
     }
   }
   return c;
+}
+
+Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tileSize,
+                       int maxCut = 8000) {
+  const SyntheticGBuffer g;
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  return checkCuts(g, lights, cutter.cut(g.pixels(), tileSize, CutRule{epsilon, true, maxCut}, 2));
 }
 
 TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
@@ -290,6 +296,78 @@ TEST(TileCuts, SpecularPixelsAreLeftToThemselves) {
   const TileCuts cuts = cutter.cut(px, 16, CutRule{}, 1);
   EXPECT_EQ(cuts.cutOfPixel[0], kNoSharedCut);
   EXPECT_NE(cuts.cutOfPixel[1], kNoSharedCut);  // its neighbour shares a cut
+}
+
+}  // namespace
+}  // namespace manylight
+
+namespace manylight {
+namespace {
+
+// Whether `g` holds the shading point of pixel i of `gb` (as CellCuts decides it).
+bool regionHolds(const ShadingRegion& g, const SyntheticGBuffer& gb, std::size_t i) {
+  const glm::vec3 p(gb.position[4 * i], gb.position[4 * i + 1], gb.position[4 * i + 2]);
+  const glm::vec3 n =
+      glm::normalize(glm::vec3(gb.normal[4 * i], gb.normal[4 * i + 1], gb.normal[4 * i + 2]));
+  return glm::all(glm::lessThanEqual(g.pMin, p)) && glm::all(glm::lessThanEqual(p, g.pMax)) &&
+         glm::dot(n, g.axis) >= g.cosSpread;
+}
+
+// Cuts kept per cell from frame to frame (render/cell_cuts.h), while the view pans: every
+// pixel lies in the region its cell's cut holds for, and every shared pixel stays within its
+// cut's bound (the total rule's guarantee); a frame seen again keeps every cut, one panned a
+// little keeps most, and another rule starts over.
+TEST(CellCuts, KeptCutsHoldForEveryPixelAsTheViewMoves) {
+  const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 1500, 7);
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  CellCuts cells(cutter);
+  const CutRule rule{0.02f, true, 8000};
+  TileCuts before;
+  for (const float pan : {0.0f, 0.0f, 0.05f, 0.6f, 2.0f}) {
+    SCOPED_TRACE("pan " + std::to_string(pan));
+    const SyntheticGBuffer g(pan);
+    const TileCuts cuts = cells.cut(g.pixels(), rule, 2);
+    EXPECT_GT(cells.cellSize(), 0.0f);
+    const Checked c = checkCuts(g, lights, cuts);
+    EXPECT_GT(c.sharedPixels, kSize * kSize / 2);
+    EXPECT_EQ(c.failing, 0);
+    EXPECT_LE(c.worstOverBound, 1.0001);
+    EXPECT_EQ(c.mixedSurfaces, 0);
+    int outside = 0;
+    for (std::size_t i = 0; i < cuts.cutOfPixel.size(); ++i) {
+      const std::uint32_t k = cuts.cutOfPixel[i];
+      if (k < cells.regions().size() && !regionHolds(cells.regions()[k], g, i)) ++outside;
+    }
+    EXPECT_EQ(outside, 0);
+    if (pan == 0.0f && !before.texels.empty()) {  // the same frame again
+      EXPECT_EQ(cells.made(), 0);
+      EXPECT_EQ(cuts.texels, before.texels);
+      EXPECT_EQ(cuts.cutOfPixel, before.cutOfPixel);
+    }
+    if (pan == 0.05f) {  // a small pan: most cells keep their cuts
+      EXPECT_GT(cells.kept(), 3 * cells.made());
+    }
+    before = cuts;
+  }
+  cells.cut(SyntheticGBuffer(2.0f).pixels(), CutRule{0.05f, true, 8000}, 2);
+  EXPECT_EQ(cells.kept(), 0);  // another ε: every cut anew
+  EXPECT_GT(cells.made(), 0);
+}
+
+// A cell whose cut is full leaves its pixels to squares' cuts for the frame, as render's
+// frames have them, and those hold too. (2,000 uniform lights under the total rule, at most
+// 1,600 nodes: 6 cells' cuts fit; the other pixels took 79 squares' cuts, down to 4x4.)
+TEST(CellCuts, FullCellsFallBackToSquares) {
+  const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  CellCuts cells(cutter);
+  const SyntheticGBuffer g;
+  const TileCuts cuts = cells.cut(g.pixels(), CutRule{0.02f, true, 1600}, 2);
+  const Checked c = checkCuts(g, lights, cuts);
+  EXPECT_GT(std::size_t(cuts.sharedCuts), cells.regions().size());  // squares' cuts after cells'
+  EXPECT_GT(c.sharedPixels, 1000);
+  EXPECT_EQ(c.failing, 0);
+  EXPECT_LE(c.worstOverBound, 1.0001);
 }
 
 }  // namespace

@@ -1,0 +1,301 @@
+#include "render/cell_cuts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+namespace manylight {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+
+glm::vec3 positionAt(const GBufferPixels& px, std::size_t i) {
+  return {px.position[4 * i], px.position[4 * i + 1], px.position[4 * i + 2]};
+}
+
+glm::vec3 normalAt(const GBufferPixels& px, std::size_t i) {
+  return {px.normal[4 * i], px.normal[4 * i + 1], px.normal[4 * i + 2]};
+}
+
+// A pixel that a shared cut may serve (as in TileCutter::cut): covered, with a normal, and
+// Lambert only.
+bool shareable(const GBufferPixels& px, std::size_t i) {
+  const float* ks = px.specular + 4 * i;
+  const glm::vec3 n = normalAt(px, i);
+  return px.normal[4 * i + 3] != 0.0f && ks[0] == 0.0f && ks[1] == 0.0f && ks[2] == 0.0f &&
+         glm::dot(n, n) > 0.0f;
+}
+
+// The bucket of unit vector `n` in an octahedral map of kNormalBuckets² buckets.
+int bucketOf(glm::vec3 n) {
+  n /= std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+  glm::vec2 p(n.x, n.y);
+  if (n.z < 0.0f) {
+    p = {(1.0f - std::abs(n.y)) * (n.x >= 0.0f ? 1.0f : -1.0f),
+         (1.0f - std::abs(n.x)) * (n.y >= 0.0f ? 1.0f : -1.0f)};
+  }
+  const int u = std::clamp(int((p.x + 1.0f) * 0.5f * kNormalBuckets), 0, kNormalBuckets - 1);
+  const int v = std::clamp(int((p.y + 1.0f) * 0.5f * kNormalBuckets), 0, kNormalBuckets - 1);
+  return v * kNormalBuckets + u;
+}
+
+// kCellPixels times the median distance between horizontal neighbours on one surface (normals
+// within 8°), over every fourth row; 0 when no two such neighbours exist.
+float cellSizeOf(const GBufferPixels& px) {
+  std::vector<float> steps;
+  for (int y = 0; y < px.height; y += 4) {
+    for (int x = 0; x + 1 < px.width; ++x) {
+      const std::size_t i = std::size_t(y) * px.width + x;
+      if (px.normal[4 * i + 3] == 0.0f || px.normal[4 * i + 7] == 0.0f) continue;
+      const glm::vec3 a = normalAt(px, i), b = normalAt(px, i + 1);
+      if (glm::dot(a, b) < 0.99f * std::sqrt(glm::dot(a, a) * glm::dot(b, b))) continue;
+      const float d = glm::length(positionAt(px, i + 1) - positionAt(px, i));
+      if (std::isfinite(d) && d > 0.0f) steps.push_back(d);
+    }
+  }
+  if (steps.empty()) return 0.0f;
+  std::nth_element(steps.begin(), steps.begin() + std::ptrdiff_t(steps.size() / 2), steps.end());
+  return kCellPixels * steps[steps.size() / 2];
+}
+
+// Whether the region holds position p and unit normal n.
+bool holds(const ShadingRegion& g, glm::vec3 p, glm::vec3 n) {
+  return p.x >= g.pMin.x && p.y >= g.pMin.y && p.z >= g.pMin.z && p.x <= g.pMax.x &&
+         p.y <= g.pMax.y && p.z <= g.pMax.z && glm::dot(n, g.axis) >= g.cosSpread;
+}
+
+}  // namespace
+
+std::uint64_t CellCuts::keyOf(const GBufferPixels& px, std::size_t i) const {
+  const glm::vec3 p = positionAt(px, i);
+  std::uint64_t key = std::uint64_t(bucketOf(glm::normalize(normalAt(px, i))));
+  for (int a = 0; a < 3; ++a) {
+    const float q = std::floor(p[a] / size_);
+    // 18 bits a coordinate: cells beyond ±131,072 edges from the origin share keys with
+    // nearer ones, which only makes their regions larger.
+    const std::int64_t c = std::isfinite(q) ? std::int64_t(std::clamp(q, -1e9f, 1e9f)) : 0;
+    key |= (std::uint64_t(c + (std::int64_t(1) << 17)) & 0x3ffffu) << (8 + 18 * (2 - a));
+  }
+  return key;
+}
+
+void CellCuts::clear() {
+  index_.clear();
+  cells_.clear();
+  keys_.clear();
+  words_ = 0;
+}
+
+std::vector<int> CellCuts::grow(const GBufferPixels& px, const std::vector<int>& cellOfPixel,
+                                const std::vector<std::uint8_t>& outside) {
+  struct Growth {
+    glm::vec3 lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};
+    glm::vec3 normals{0.0f};
+    float lowest = 1.0f;  // smallest cosine to the new axis
+  };
+  std::vector<int> growthOf(cells_.size(), -1), grown;
+  std::vector<Growth> growth;
+  for (std::size_t i = 0; i < outside.size(); ++i) {
+    if (!outside[i]) continue;
+    const int c = cellOfPixel[i];
+    if (growthOf[std::size_t(c)] < 0) {
+      growthOf[std::size_t(c)] = int(growth.size());
+      growth.emplace_back();
+      grown.push_back(c);
+    }
+    Growth& g = growth[std::size_t(growthOf[std::size_t(c)])];
+    const glm::vec3 p = positionAt(px, i);
+    g.lo = glm::min(g.lo, p);
+    g.hi = glm::max(g.hi, p);
+    g.normals += glm::normalize(normalAt(px, i));
+  }
+  // The new cones' axes: the old axis and the new normals' mean, halfway; the cone then holds
+  // the old one and every new normal.
+  for (std::size_t k = 0; k < grown.size(); ++k) {
+    Cell& cell = cells_[std::size_t(grown[k])];
+    Growth& g = growth[k];
+    // Normals that cancel out leave no axis; any will do, the spread below covers them.
+    glm::vec3 axis = glm::dot(g.normals, g.normals) > 1e-12f ? glm::normalize(g.normals)
+                                                             : glm::vec3(0.0f, 0.0f, 1.0f);
+    if (!cell.empty) {
+      const glm::vec3 mid = cell.region.axis + axis;
+      axis = glm::dot(mid, mid) > 1e-12f ? glm::normalize(mid) : cell.region.axis;
+      const float c = std::clamp(glm::dot(axis, cell.region.axis), -1.0f, 1.0f);
+      const float angle = std::acos(c) + std::acos(std::clamp(cell.region.cosSpread, -1.0f, 1.0f));
+      g.lowest = angle >= kPi ? -1.0f : std::cos(angle);
+    }
+    cell.region.axis = axis;
+  }
+  for (std::size_t i = 0; i < outside.size(); ++i) {
+    if (!outside[i]) continue;
+    const int c = cellOfPixel[i];
+    Growth& g = growth[std::size_t(growthOf[std::size_t(c)])];
+    g.lowest = std::min(
+        g.lowest, glm::dot(glm::normalize(normalAt(px, i)), cells_[std::size_t(c)].region.axis));
+  }
+  for (std::size_t k = 0; k < grown.size(); ++k) {
+    Cell& cell = cells_[std::size_t(grown[k])];
+    const Growth& g = growth[k];
+    ShadingRegion& r = cell.region;
+    const float angle = std::acos(std::clamp(g.lowest, -1.0f, 1.0f));
+    // A flat surface's normals differ only in their last bits: round-off, as shadingRegion.
+    r.cosSpread = angle > 1e-3f ? std::cos(std::min(angle + kConeGrow, kPi))
+                                : std::max(g.lowest - 1e-6f, -1.0f);
+    r.sinSpread = std::sqrt(std::max(1.0f - r.cosSpread * r.cosSpread, 0.0f));
+    glm::vec3 lo = g.lo, hi = g.hi;
+    if (!cell.empty) {
+      lo = glm::min(lo, r.pMin);
+      hi = glm::max(hi, r.pMax);
+    }
+    const std::uint64_t key = keys_[std::size_t(grown[k])];
+    for (int a = 0; a < 3; ++a) {
+      const float cube =
+          float(std::int64_t((key >> (8 + 18 * (2 - a))) & 0x3ffffu) - (std::int64_t(1) << 17)) *
+          size_;
+      if (hi[a] - lo[a] > 0.02f * size_) {
+        lo[a] = std::max(lo[a] - kGrow * size_, std::min(lo[a], cube));
+        hi[a] = std::min(hi[a] + kGrow * size_, std::max(hi[a], cube + size_));
+      }
+      const float pad = 1e-3f * size_ + 1e-6f * std::max(std::abs(lo[a]), std::abs(hi[a]));
+      lo[a] -= pad;
+      hi[a] += pad;
+    }
+    r.pMin = lo;
+    r.pMax = hi;
+    cell.empty = false;
+  }
+  std::sort(grown.begin(), grown.end());
+  return grown;
+}
+
+TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads) {
+  TileCuts out;
+  const std::size_t n = std::size_t(px.width) * px.height;
+  out.cutOfPixel.assign(n, kNoSharedCut);
+  if (rule.error != rule_.error || rule.total != rule_.total || rule.maxCut != rule_.maxCut ||
+      words_ > kMaxKeptWords) {
+    clear();
+    rule_ = rule;
+  }
+  if (size_ <= 0.0f) size_ = cellSizeOf(px);
+  made_ = kept_ = 0;
+  frameRegions_.clear();
+  if (!(size_ > 0.0f) || !std::isfinite(size_)) {
+    size_ = 0.0f;  // nothing on screen to size cells by: every pixel cuts for itself
+    return out;
+  }
+
+  // Each pixel's cell, and whether the cell's region holds it.
+  std::vector<int> cellOfPixel(n, -1);
+  std::vector<std::uint8_t> outside(n, 0);
+  std::uint64_t lastKey = ~std::uint64_t(0);
+  int last = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!shareable(px, i)) continue;
+    const std::uint64_t key = keyOf(px, i);
+    if (key != lastKey) {
+      const auto [it, added] = index_.try_emplace(key, int(cells_.size()));
+      if (added) {
+        cells_.emplace_back();
+        keys_.push_back(key);
+      }
+      lastKey = key;
+      last = it->second;
+    }
+    cellOfPixel[i] = last;
+    const Cell& cell = cells_[std::size_t(last)];
+    outside[i] =
+        cell.empty || !holds(cell.region, positionAt(px, i), glm::normalize(normalAt(px, i)));
+  }
+
+  // Cuts of the cells that are new or grew.
+  const std::vector<int> grown = grow(px, cellOfPixel, outside);
+  const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));
+  std::vector<long long> bounds(std::size_t(workers), 0);
+  auto work = [&](int t) {
+    for (std::size_t k = std::size_t(t); k < grown.size(); k += std::size_t(workers)) {
+      Cell& cell = cells_[std::size_t(grown[k])];
+      cell.entries.clear();
+      cell.cut = cutter_.cutRegion(cell.region, rule, true, cell.entries);
+      cell.perPixel = cell.cut.perPixel;
+      if (cell.perPixel) cell.entries.clear();
+      cell.entries.shrink_to_fit();
+      bounds[std::size_t(t)] += cell.cut.bounds;
+    }
+  };
+  for (const int c : grown) words_ -= cells_[std::size_t(c)].entries.size();
+  if (workers == 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> pool;
+    for (int t = 0; t < workers; ++t) pool.emplace_back(work, t);
+    for (std::thread& th : pool) th.join();
+  }
+  for (const int c : grown) words_ += cells_[std::size_t(c)].entries.size();
+  for (const long long b : bounds) out.boundEvaluations += b;
+
+  // The frame's cuts: its cells' in the order the pixels first use them, then, for the
+  // pixels of cells whose cut is full, squares' cuts as TileCutter::cut finds them (split by
+  // surface and into quarters as needed), this frame only.
+  std::vector<std::uint8_t> made(cells_.size(), 0), full(n, 0);
+  for (const int c : grown) made[std::size_t(c)] = 1;
+  std::vector<int> frameCut(cells_.size(), -2), used;
+  bool anyFull = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int c = cellOfPixel[i];
+    if (c < 0) continue;
+    int& f = frameCut[std::size_t(c)];
+    if (f == -2) {
+      const Cell& cell = cells_[std::size_t(c)];
+      (made[std::size_t(c)] ? made_ : kept_) += 1;
+      f = cell.perPixel ? -1 : int(used.size());
+      if (f >= 0) {
+        used.push_back(c);
+        frameRegions_.push_back(cell.region);
+      }
+    }
+    if (f >= 0) {
+      out.cutOfPixel[i] = std::uint32_t(f);
+    } else {
+      full[i] = 1;
+      anyFull = true;
+    }
+  }
+  const TileCuts squares =
+      anyFull ? cutter_.cut(px, kFallbackTile, rule, threads, &full) : TileCuts{};
+  const std::size_t cuts = used.size() + std::size_t(squares.sharedCuts);
+  std::size_t cellTexels = 0;
+  for (const int c : used) cellTexels += cells_[std::size_t(c)].entries.size() / 4;
+  const std::size_t squareHeads = 2 * std::size_t(squares.sharedCuts);
+  out.texels.assign((2 * cuts + cellTexels) * 4 + squares.texels.size() - squareHeads * 4, 0u);
+  std::size_t next = 2 * cuts;
+  for (std::size_t u = 0; u < used.size(); ++u) {
+    const Cell& cell = cells_[std::size_t(used[u])];
+    cell.cut.writeHeader(std::uint32_t(next), out.texels.data() + 8 * u);
+    std::copy(cell.entries.begin(), cell.entries.end(),
+              out.texels.begin() + std::ptrdiff_t(next * 4));
+    next += cell.entries.size() / 4;
+  }
+  // The squares' headers, their first entries moved past the cells' entries.
+  std::uint32_t* head = out.texels.data() + 8 * used.size();
+  for (std::size_t k = 0; k < std::size_t(squares.sharedCuts); ++k, head += 8) {
+    std::copy_n(squares.texels.data() + 8 * k, 8, head);
+    head[0] = std::uint32_t(head[0] - squareHeads + next);
+  }
+  std::copy(squares.texels.begin() + std::ptrdiff_t(squareHeads * 4), squares.texels.end(),
+            out.texels.begin() + std::ptrdiff_t(next * 4));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (squares.cutOfPixel.empty() || squares.cutOfPixel[i] == kNoSharedCut) continue;
+    out.cutOfPixel[i] = std::uint32_t(used.size()) + squares.cutOfPixel[i];
+  }
+  out.sharedCuts = int(cuts);
+  out.perPixelGroups = squares.perPixelGroups;
+  out.surfaceSplits = squares.surfaceSplits;
+  out.boundEvaluations += squares.boundEvaluations;
+  made_ += squares.sharedCuts + squares.perPixelGroups;
+  return out;
+}
+
+}  // namespace manylight

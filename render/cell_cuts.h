@@ -1,0 +1,85 @@
+#pragma once
+// Shared cuts kept from frame to frame of a playback, per cell of the scene instead of per
+// square of the screen (render/tile_cuts.h). No GL here.
+//
+// A square's shared cut holds for the shading points of that square in one frame: when the
+// camera moves, every square sees other points and the CPU finds every cut again, about two
+// thirds of a frame's time at 65,536 lights. The scene does not move, though. So in playback
+// the pixels are grouped by where they are in the scene: a cell is a cube of space (edge
+// cellSize(), about kCellPixels pixels of the first frame) and a bucket of normal directions
+// (an octahedral map of kNormalBuckets² buckets, each about 8° wide), and its cut holds for
+// a region (render/pixel_groups.h: a box of positions, a cone of normals) that contains every
+// shading point the cell has had. A frame whose pixels lie in their cells' regions reuses the
+// cuts as they are. A pixel outside its cell's region grows the region, and the cell's cut is
+// found anew: the box joins the new points and, along an axis on which the points spread,
+// widens by kGrow of the cube's edge (within the cube; a plane stays as thin as it is), and a
+// cone that spreads widens by kConeGrow radians more than it must, so that regions soon stop
+// growing. Each pixel checks the rule for itself as before, with bounds that hold over its
+// cell's region, which holds the pixel: the total rule's guarantee is kept.
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "render/pixel_groups.h"
+#include "render/tile_cuts.h"
+
+namespace manylight {
+
+inline constexpr int kCellPixels = 12;
+// The pixels of a cell whose cut is full take cuts of squares of this size, as render's
+// frames do (render/tile_cuts.h), found for that frame only.
+inline constexpr int kFallbackTile = 16;
+inline constexpr int kNormalBuckets = 16;
+inline constexpr float kGrow = 0.25f;
+inline constexpr float kConeGrow = 0.05f;
+// The kept cuts' entries stop at this many words (64 MiB): past it, the next frame starts
+// over with no cell, so that a long playback's memory stays bounded.
+inline constexpr std::size_t kMaxKeptWords = std::size_t(16) << 20;
+
+class CellCuts {
+ public:
+  // Cuts through `cutter`'s trees, which must outlive this.
+  explicit CellCuts(const TileCutter& cutter) : cutter_(cutter) {}
+
+  // This frame's cuts, as TileCutter::cut gives them: those of its cells, found for cells that
+  // are new or grew, on `threads` threads. The first frame fixes the cells' size. Another
+  // rule than the last frame's starts over.
+  TileCuts cut(const GBufferPixels& pixels, const CutRule& rule, int threads);
+
+  float cellSize() const { return size_; }
+  // Of the last frame: its shared cuts that were found (of cells that were new or grew, and of
+  // squares for the pixels of full cells), and its cells whose cut was kept.
+  int made() const { return made_; }
+  int kept() const { return kept_; }
+  // The region each of the last frame's cells' cuts holds for, by cut number (cutOfPixel);
+  // the squares' cuts are numbered after them.
+  const std::vector<ShadingRegion>& regions() const { return frameRegions_; }
+
+ private:
+  struct Cell {
+    ShadingRegion region{};
+    bool empty = true;      // no region yet
+    bool perPixel = false;  // its cut is full: its pixels cut for themselves
+    RegionCut cut;
+    std::vector<std::uint32_t> entries;
+  };
+  // A pixel's cell: its cube and its normal's bucket; ~0 when it has none.
+  std::uint64_t keyOf(const GBufferPixels& px, std::size_t i) const;
+  // Grows the region of each cell that has a pixel `outside` it (cellOfPixel names the
+  // pixels' cells) to hold those pixels; returns those cells, in order.
+  std::vector<int> grow(const GBufferPixels& px, const std::vector<int>& cellOfPixel,
+                        const std::vector<std::uint8_t>& outside);
+  void clear();
+
+  const TileCutter& cutter_;
+  float size_ = 0.0f;
+  CutRule rule_;
+  std::unordered_map<std::uint64_t, int> index_;  // cell of a key
+  std::vector<Cell> cells_;
+  std::vector<std::uint64_t> keys_;  // key of a cell
+  std::size_t words_ = 0;            // entry words the cells hold
+  int made_ = 0, kept_ = 0;
+  std::vector<ShadingRegion> frameRegions_;
+};
+
+}  // namespace manylight
