@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <thread>
+
+#include "render/threads.h"
 
 namespace manylight {
 
@@ -226,13 +227,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     }
   };
   for (const int c : grown) words_ -= cells_[std::size_t(c)].entries.size();
-  if (workers == 1) {
-    work(0);
-  } else {
-    std::vector<std::thread> pool;
-    for (int t = 0; t < workers; ++t) pool.emplace_back(work, t);
-    for (std::thread& th : pool) th.join();
-  }
+  onThreads(workers, work);
   for (const int c : grown) words_ += cells_[std::size_t(c)].entries.size();
   for (const long long b : bounds) out.boundEvaluations += b;
 

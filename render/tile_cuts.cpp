@@ -4,12 +4,12 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #include "bake/light_tree_layout.h"
 #include "render/cut_heap.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
+#include "render/threads.h"
 
 namespace manylight {
 
@@ -149,13 +149,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
       }
     }
   };
-  if (threads == 1) {
-    work(0);
-  } else {
-    std::vector<std::thread> pool;
-    for (int index = 0; index < threads; ++index) pool.emplace_back(work, index);
-    for (std::thread& th : pool) th.join();
-  }
+  onThreads(threads, work);
 
   // Number the cuts part after part, and lay out headers, then entries.
   std::vector<std::uint32_t> firstCut(parts.size(), 0);
