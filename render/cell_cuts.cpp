@@ -89,6 +89,22 @@ void CellCuts::clear() {
   words_ = 0;
 }
 
+void CellCuts::dropUnused() {
+  std::vector<Cell> cells;
+  std::vector<std::uint64_t> keys;
+  index_.clear();
+  words_ = 0;
+  for (std::size_t c = 0; c < cells_.size(); ++c) {
+    if (cells_[c].lastUsed < frame_ - 1) continue;
+    index_.emplace(keys_[c], int(cells.size()));
+    words_ += cells_[c].entries.size();
+    cells.push_back(std::move(cells_[c]));
+    keys.push_back(keys_[c]);
+  }
+  cells_ = std::move(cells);
+  keys_ = std::move(keys);
+}
+
 std::vector<int> CellCuts::grow(const GBufferPixels& px, const std::vector<int>& cellOfPixel,
                                 const std::vector<std::uint8_t>& outside) {
   struct Growth {
@@ -175,11 +191,11 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   TileCuts out;
   const std::size_t n = std::size_t(px.width) * px.height;
   out.cutOfPixel.assign(n, kNoSharedCut);
-  if (rule.error != rule_.error || rule.total != rule_.total || rule.maxCut != rule_.maxCut ||
-      words_ > kMaxKeptWords) {
+  if (rule.error != rule_.error || rule.total != rule_.total || rule.maxCut != rule_.maxCut) {
     clear();
     rule_ = rule;
   }
+  if (words_ > maxWords_) dropUnused();
   if (size_ <= 0.0f) size_ = cellSizeOf(px);
   made_ = kept_ = 0;
   frameRegions_.clear();
@@ -243,7 +259,8 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     if (c < 0) continue;
     int& f = frameCut[std::size_t(c)];
     if (f == -2) {
-      const Cell& cell = cells_[std::size_t(c)];
+      Cell& cell = cells_[std::size_t(c)];
+      cell.lastUsed = frame_;
       (made[std::size_t(c)] ? made_ : kept_) += 1;
       f = cell.perPixel ? -1 : int(used.size());
       if (f >= 0) {
@@ -263,6 +280,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   const std::size_t cuts = used.size() + std::size_t(squares.sharedCuts);
   std::size_t cellTexels = 0;
   for (const int c : used) cellTexels += cells_[std::size_t(c)].entries.size() / 4;
+  ++frame_;
   const std::size_t squareHeads = 2 * std::size_t(squares.sharedCuts);
   out.texels.assign((2 * cuts + cellTexels) * 4 + squares.texels.size() - squareHeads * 4, 0u);
   std::size_t next = 2 * cuts;

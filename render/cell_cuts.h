@@ -33,13 +33,16 @@ inline constexpr int kNormalBuckets = 16;
 inline constexpr float kGrow = 0.25f;
 inline constexpr float kConeGrow = 0.05f;
 // The kept cuts' entries stop at this many words (64 MiB): past it, the next frame starts
-// over with no cell, so that a long playback's memory stays bounded.
+// without the cells the last frame did not use, so that a long playback's memory stays
+// bounded (by this, or by one frame's cells when they alone hold more).
 inline constexpr std::size_t kMaxKeptWords = std::size_t(16) << 20;
 
 class CellCuts {
  public:
-  // Cuts through `cutter`'s trees, which must outlive this.
-  explicit CellCuts(const TileCutter& cutter) : cutter_(cutter) {}
+  // Cuts through `cutter`'s trees, which must outlive this; keeps about `maxWords` words of
+  // entries at most (kMaxKeptWords).
+  explicit CellCuts(const TileCutter& cutter, std::size_t maxWords = kMaxKeptWords)
+      : cutter_(cutter), maxWords_(maxWords) {}
 
   // This frame's cuts, as TileCutter::cut gives them: those of its cells, found for cells that
   // are new or grew, on `threads` threads. The first frame fixes the cells' size. Another
@@ -51,6 +54,8 @@ class CellCuts {
   // squares for the pixels of full cells), and its cells whose cut was kept.
   int made() const { return made_; }
   int kept() const { return kept_; }
+  // Cells kept, used by the last frame or not.
+  std::size_t cellCount() const { return cells_.size(); }
   // The region each of the last frame's cells' cuts holds for, by cut number (cutOfPixel);
   // the squares' cuts are numbered after them.
   const std::vector<ShadingRegion>& regions() const { return frameRegions_; }
@@ -62,6 +67,7 @@ class CellCuts {
     bool perPixel = false;  // its cut is full: its pixels cut for themselves
     RegionCut cut;
     std::vector<std::uint32_t> entries;
+    long long lastUsed = -1;  // the last frame that used it
   };
   // A pixel's cell: its cube and its normal's bucket; ~0 when it has none.
   std::uint64_t keyOf(const GBufferPixels& px, std::size_t i) const;
@@ -70,14 +76,18 @@ class CellCuts {
   std::vector<int> grow(const GBufferPixels& px, const std::vector<int>& cellOfPixel,
                         const std::vector<std::uint8_t>& outside);
   void clear();
+  // Drops the cells the last frame did not use.
+  void dropUnused();
 
   const TileCutter& cutter_;
+  std::size_t maxWords_;
   float size_ = 0.0f;
   CutRule rule_;
   std::unordered_map<std::uint64_t, int> index_;  // cell of a key
   std::vector<Cell> cells_;
   std::vector<std::uint64_t> keys_;  // key of a cell
   std::size_t words_ = 0;            // entry words the cells hold
+  long long frame_ = 0;              // frames cut
   int made_ = 0, kept_ = 0;
   std::vector<ShadingRegion> frameRegions_;
 };

@@ -354,6 +354,30 @@ TEST(CellCuts, KeptCutsHoldForEveryPixelAsTheViewMoves) {
   EXPECT_GT(cells.made(), 0);
 }
 
+// Past the memory limit, the cells the last frame did not use are dropped (and found again if
+// they come back into view); the last frame's stay.
+TEST(CellCuts, PastTheLimitUnusedCellsAreDropped) {
+  const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 500, 7);
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  CellCuts cells(cutter, 1);  // any frame's cells exceed one word
+  const CutRule rule{0.02f, true, 8000};
+  const SyntheticGBuffer here(0.0f), there(3.0f);
+  cells.cut(here.pixels(), rule, 2);
+  const std::size_t first = cells.cellCount();
+  cells.cut(here.pixels(), rule, 2);  // over the limit, but every cell was in use
+  EXPECT_EQ(cells.made(), 0);
+  EXPECT_EQ(cells.cellCount(), first);
+  cells.cut(there.pixels(), rule, 2);
+  EXPECT_GT(cells.cellCount(), first);
+  const int seenThere = cells.made() + cells.kept();
+  cells.cut(there.pixels(), rule, 2);  // drops the cells only `here` used
+  EXPECT_EQ(cells.made(), 0);
+  EXPECT_EQ(cells.cellCount(), std::size_t(seenThere));
+  const TileCuts back = cells.cut(here.pixels(), rule, 2);  // found again
+  EXPECT_GT(cells.made(), 0);
+  EXPECT_EQ(checkCuts(here, lights, back).failing, 0);
+}
+
 // A cell whose cut is full leaves its pixels to squares' cuts for the frame, as render's
 // frames have them, and those hold too. (2,000 uniform lights under the total rule, at most
 // 1,600 nodes: 6 cells' cuts fit; the other pixels took 79 squares' cuts, down to 4x4.)
