@@ -69,17 +69,32 @@ bool holds(const ShadingRegion& g, glm::vec3 p, glm::vec3 n) {
 
 }  // namespace
 
-std::uint64_t CellCuts::keyOf(const GBufferPixels& px, std::size_t i) const {
+// A key: the level (2 bits), then each coordinate of the cube's corner in edges (18 bits:
+// cells beyond ±131,072 edges from the origin share keys with nearer ones, which only makes
+// their regions larger), then the normals' bucket (8 bits).
+std::uint64_t CellCuts::keyOf(const GBufferPixels& px, std::size_t i, int level) const {
   const glm::vec3 p = positionAt(px, i);
-  std::uint64_t key = std::uint64_t(bucketOf(glm::normalize(normalAt(px, i))));
+  std::uint64_t key =
+      std::uint64_t(level) << 62 | std::uint64_t(bucketOf(glm::normalize(normalAt(px, i))));
+  const float edge = size_ / float(1 << level);
   for (int a = 0; a < 3; ++a) {
-    const float q = std::floor(p[a] / size_);
-    // 18 bits a coordinate: cells beyond ±131,072 edges from the origin share keys with
-    // nearer ones, which only makes their regions larger.
+    const float q = std::floor(p[a] / edge);
     const std::int64_t c = std::isfinite(q) ? std::int64_t(std::clamp(q, -1e9f, 1e9f)) : 0;
     key |= (std::uint64_t(c + (std::int64_t(1) << 17)) & 0x3ffffu) << (8 + 18 * (2 - a));
   }
   return key;
+}
+
+float CellCuts::edgeOf(std::uint64_t key) const { return size_ / float(1 << int(key >> 62)); }
+
+glm::vec3 CellCuts::cornerOf(std::uint64_t key) const {
+  glm::vec3 corner;
+  for (int a = 0; a < 3; ++a) {
+    const std::int64_t c =
+        std::int64_t((key >> (8 + 18 * (2 - a))) & 0x3ffffu) - (std::int64_t(1) << 17);
+    corner[a] = float(c) * edgeOf(key);
+  }
+  return corner;
 }
 
 void CellCuts::clear() {
@@ -167,15 +182,14 @@ std::vector<int> CellCuts::grow(const GBufferPixels& px, const std::vector<int>&
       hi = glm::max(hi, r.pMax);
     }
     const std::uint64_t key = keys_[std::size_t(grown[k])];
+    const float edge = edgeOf(key);
+    const glm::vec3 corner = cornerOf(key);
     for (int a = 0; a < 3; ++a) {
-      const float cube =
-          float(std::int64_t((key >> (8 + 18 * (2 - a))) & 0x3ffffu) - (std::int64_t(1) << 17)) *
-          size_;
-      if (hi[a] - lo[a] > 0.02f * size_) {
-        lo[a] = std::max(lo[a] - kGrow * size_, std::min(lo[a], cube));
-        hi[a] = std::min(hi[a] + kGrow * size_, std::max(hi[a], cube + size_));
+      if (hi[a] - lo[a] > 0.02f * edge) {
+        lo[a] = std::max(lo[a] - kGrow * edge, std::min(lo[a], corner[a]));
+        hi[a] = std::min(hi[a] + kGrow * edge, std::max(hi[a], corner[a] + edge));
       }
-      const float pad = 1e-3f * size_ + 1e-6f * std::max(std::abs(lo[a]), std::abs(hi[a]));
+      const float pad = 1e-3f * edge + 1e-6f * std::max(std::abs(lo[a]), std::abs(hi[a]));
       lo[a] -= pad;
       hi[a] += pad;
     }
@@ -204,54 +218,77 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     return out;
   }
 
-  // Each pixel's cell, and whether the cell's region holds it.
-  std::vector<int> cellOfPixel(n, -1);
+  // Level by level: each pending pixel's cell, whether the cell's region holds it, then the
+  // cuts of the cells that are new or grew. A full cell below the last level splits: its
+  // pixels go on to the next level's cells.
+  std::vector<int> cellOfPixel(n, -1), grownAll;
   std::vector<std::uint8_t> outside(n, 0);
-  std::uint64_t lastKey = ~std::uint64_t(0);
-  int last = -1;
+  std::vector<std::size_t> pending, later;
   for (std::size_t i = 0; i < n; ++i) {
-    if (!shareable(px, i)) continue;
-    const std::uint64_t key = keyOf(px, i);
-    if (key != lastKey) {
-      const auto [it, added] = index_.try_emplace(key, int(cells_.size()));
-      if (added) {
-        cells_.emplace_back();
-        keys_.push_back(key);
-      }
-      lastKey = key;
-      last = it->second;
-    }
-    cellOfPixel[i] = last;
-    const Cell& cell = cells_[std::size_t(last)];
-    outside[i] =
-        cell.empty || !holds(cell.region, positionAt(px, i), glm::normalize(normalAt(px, i)));
+    if (shareable(px, i)) pending.push_back(i);
   }
-
-  // Cuts of the cells that are new or grew.
-  const std::vector<int> grown = grow(px, cellOfPixel, outside);
-  const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));
-  std::vector<long long> bounds(std::size_t(workers), 0);
-  auto work = [&](int t) {
-    for (std::size_t k = std::size_t(t); k < grown.size(); k += std::size_t(workers)) {
-      Cell& cell = cells_[std::size_t(grown[k])];
-      cell.entries.clear();
-      cell.cut = cutter_.cutRegion(cell.region, rule, true, cell.entries);
-      cell.perPixel = cell.cut.perPixel;
-      if (cell.perPixel) cell.entries.clear();
-      cell.entries.shrink_to_fit();
-      bounds[std::size_t(t)] += cell.cut.bounds;
+  for (int level = 0; level <= kMaxCellLevel && !pending.empty(); ++level) {
+    std::uint64_t lastKey = ~std::uint64_t(0);
+    int last = -1;
+    later.clear();
+    for (const std::size_t i : pending) {
+      const std::uint64_t key = keyOf(px, i, level);
+      if (key != lastKey) {
+        const auto [it, added] = index_.try_emplace(key, int(cells_.size()));
+        if (added) {
+          cells_.emplace_back();
+          keys_.push_back(key);
+        }
+        lastKey = key;
+        last = it->second;
+      }
+      Cell& cell = cells_[std::size_t(last)];
+      cell.lastUsed = frame_;
+      if (cell.split) {
+        later.push_back(i);
+        continue;
+      }
+      cellOfPixel[i] = last;
+      outside[i] =
+          cell.empty || !holds(cell.region, positionAt(px, i), glm::normalize(normalAt(px, i)));
     }
-  };
-  for (const int c : grown) words_ -= cells_[std::size_t(c)].entries.size();
-  onThreads(workers, work);
-  for (const int c : grown) words_ += cells_[std::size_t(c)].entries.size();
-  for (const long long b : bounds) out.boundEvaluations += b;
+    const std::vector<int> grown = grow(px, cellOfPixel, outside);
+    for (const std::size_t i : pending) outside[i] = 0;
+    const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));
+    std::vector<long long> bounds(std::size_t(workers), 0);
+    auto work = [&](int t) {
+      for (std::size_t k = std::size_t(t); k < grown.size(); k += std::size_t(workers)) {
+        Cell& cell = cells_[std::size_t(grown[k])];
+        cell.entries.clear();
+        cell.cut = cutter_.cutRegion(cell.region, rule, true, cell.entries);
+        cell.perPixel = cell.cut.perPixel;
+        cell.split = cell.perPixel && level < kMaxCellLevel;
+        if (cell.perPixel) cell.entries.clear();
+        cell.entries.shrink_to_fit();
+        bounds[std::size_t(t)] += cell.cut.bounds;
+      }
+    };
+    for (const int c : grown) words_ -= cells_[std::size_t(c)].entries.size();
+    onThreads(workers, work);
+    for (const int c : grown) words_ += cells_[std::size_t(c)].entries.size();
+    for (const long long b : bounds) out.boundEvaluations += b;
+    grownAll.insert(grownAll.end(), grown.begin(), grown.end());
+    for (const std::size_t i : pending) {
+      const int c = cellOfPixel[i];
+      if (c >= 0 && cells_[std::size_t(c)].split) {
+        cellOfPixel[i] = -1;
+        later.push_back(i);
+      }
+    }
+    std::sort(later.begin(), later.end());
+    pending.swap(later);
+  }
 
   // The frame's cuts: its cells' in the order the pixels first use them, then, for the
   // pixels of cells whose cut is full, squares' cuts as TileCutter::cut finds them (split by
   // surface and into quarters as needed), this frame only.
   std::vector<std::uint8_t> made(cells_.size(), 0), full(n, 0);
-  for (const int c : grown) made[std::size_t(c)] = 1;
+  for (const int c : grownAll) made[std::size_t(c)] = 1;
   std::vector<int> frameCut(cells_.size(), -2), used;
   bool anyFull = false;
   for (std::size_t i = 0; i < n; ++i) {
@@ -259,9 +296,8 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     if (c < 0) continue;
     int& f = frameCut[std::size_t(c)];
     if (f == -2) {
-      Cell& cell = cells_[std::size_t(c)];
-      cell.lastUsed = frame_;
-      (made[std::size_t(c)] ? made_ : kept_) += 1;
+      const Cell& cell = cells_[std::size_t(c)];
+      if (!made[std::size_t(c)]) ++kept_;
       f = cell.perPixel ? -1 : int(used.size());
       if (f >= 0) {
         used.push_back(c);
@@ -307,7 +343,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   out.perPixelGroups = squares.perPixelGroups;
   out.surfaceSplits = squares.surfaceSplits;
   out.boundEvaluations += squares.boundEvaluations;
-  made_ += squares.sharedCuts + squares.perPixelGroups;
+  made_ = int(grownAll.size()) + squares.sharedCuts + squares.perPixelGroups;
   return out;
 }
 

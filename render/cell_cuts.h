@@ -14,8 +14,9 @@
 // found anew: the box joins the new points and, along an axis on which the points spread,
 // widens by kGrow of the cube's edge (within the cube; a plane stays as thin as it is), and a
 // cone that spreads widens by kConeGrow radians more than it must, so that regions soon stop
-// growing. Each pixel checks the rule for itself as before, with bounds that hold over its
-// cell's region, which holds the pixel: the total rule's guarantee is kept.
+// growing. A cell whose cut is full splits into eight cubes of half its edge, for good
+// (kMaxCellLevel). Each pixel checks the rule for itself as before, with bounds that hold over
+// its cell's region, which holds the pixel: the total rule's guarantee is kept.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -26,8 +27,11 @@
 namespace manylight {
 
 inline constexpr int kCellPixels = 12;
-// The pixels of a cell whose cut is full take cuts of squares of this size, as render's
+// A cell whose cut is full is split into eight cubes of half its edge (each with its buckets),
+// and those again, kMaxCellLevel times in all; the split is kept with the cells. The pixels of
+// a full cell at the last level take cuts of squares of kFallbackTile pixels, as render's
 // frames do (render/tile_cuts.h), found for that frame only.
+inline constexpr int kMaxCellLevel = 2;
 inline constexpr int kFallbackTile = 16;
 inline constexpr int kNormalBuckets = 16;
 inline constexpr float kGrow = 0.25f;
@@ -64,13 +68,17 @@ class CellCuts {
   struct Cell {
     ShadingRegion region{};
     bool empty = true;      // no region yet
-    bool perPixel = false;  // its cut is full: its pixels cut for themselves
+    bool perPixel = false;  // its cut is full
+    bool split = false;     // full, and its pixels go to the cells of the next level
     RegionCut cut;
     std::vector<std::uint32_t> entries;
     long long lastUsed = -1;  // the last frame that used it
   };
-  // A pixel's cell: its cube and its normal's bucket; ~0 when it has none.
-  std::uint64_t keyOf(const GBufferPixels& px, std::size_t i) const;
+  // Pixel i's cell at `level`: its cube (of edge cellSize() / 2^level) and its normal's bucket.
+  std::uint64_t keyOf(const GBufferPixels& px, std::size_t i, int level) const;
+  // The edge of a cell's cube, and its corner of least coordinates.
+  float edgeOf(std::uint64_t key) const;
+  glm::vec3 cornerOf(std::uint64_t key) const;
   // Grows the region of each cell that has a pixel `outside` it (cellOfPixel names the
   // pixels' cells) to hold those pixels; returns those cells, in order.
   std::vector<int> grow(const GBufferPixels& px, const std::vector<int>& cellOfPixel,

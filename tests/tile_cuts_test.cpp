@@ -378,16 +378,18 @@ TEST(CellCuts, PastTheLimitUnusedCellsAreDropped) {
   EXPECT_EQ(checkCuts(here, lights, back).failing, 0);
 }
 
-// A cell whose cut is full leaves its pixels to squares' cuts for the frame, as render's
-// frames have them, and those hold too. (2,000 uniform lights under the total rule, at most
-// 1,600 nodes: 6 cells' cuts fit; the other pixels took 79 squares' cuts, down to 4x4.)
-TEST(CellCuts, FullCellsFallBackToSquares) {
+// A cell whose cut is full splits into eight smaller ones, twice at most; the pixels of a
+// cell still full take squares' cuts for the frame, as render's frames have them, and all of
+// them hold. (2,000 uniform lights under the total rule, at most 1,600 nodes: 65 cells' cuts
+// fit, of 328 cells made, and one square's.)
+TEST(CellCuts, FullCellsSplitThenFallBackToSquares) {
   const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
   const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
   CellCuts cells(cutter);
   const SyntheticGBuffer g;
   const TileCuts cuts = cells.cut(g.pixels(), CutRule{0.02f, true, 1600}, 2);
   const Checked c = checkCuts(g, lights, cuts);
+  EXPECT_GT(cells.cellCount(), 2 * cells.regions().size());         // the split cells are kept
   EXPECT_GT(std::size_t(cuts.sharedCuts), cells.regions().size());  // squares' cuts after cells'
   EXPECT_GT(c.sharedPixels, 1000);
   EXPECT_EQ(c.failing, 0);
