@@ -27,6 +27,13 @@ bin="$PWD/build/bin"
 results="$PWD/docs/results"
 mkdir -p "$results"
 if ! $report_only; then
+  # Fail now, not after hours of sweep: the peers step needs the scene generator too.
+  for tool in manylight manylight_make_scene; do
+    if [ ! -x "$bin/$tool" ]; then
+      echo "sweep.sh: $bin/$tool is missing; build everything first (cmake --build build)" >&2
+      exit 2
+    fi
+  done
   "$bin/manylight" bench --size "$size" "${resume[@]}" \
     --csv "$results/sweep.csv" --json "$results/sweep.json"
   "$bin/manylight" bench --suite stability "${resume[@]}" \
