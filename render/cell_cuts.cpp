@@ -12,22 +12,19 @@ namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
 
-glm::vec3 positionAt(const GBufferPixels& px, std::size_t i) {
-  return {px.position[4 * i], px.position[4 * i + 1], px.position[4 * i + 2]};
+// Pixel i's normal, of unit length.
+glm::vec3 unitNormalAt(const GBufferPixels& px, std::size_t i) {
+  return glm::normalize(normalAt(px, i));
 }
 
-glm::vec3 normalAt(const GBufferPixels& px, std::size_t i) {
-  return {px.normal[4 * i], px.normal[4 * i + 1], px.normal[4 * i + 2]};
-}
-
-// A pixel that a shared cut may serve (as in TileCutter::cut): covered, with a normal, and
-// Lambert only.
-bool shareable(const GBufferPixels& px, std::size_t i) {
-  const float* ks = px.specular + 4 * i;
-  const glm::vec3 n = normalAt(px, i);
-  return px.normal[4 * i + 3] != 0.0f && ks[0] == 0.0f && ks[1] == 0.0f && ks[2] == 0.0f &&
-         glm::dot(n, n) > 0.0f;
-}
+// A cell's key: the level (2 bits), then each coordinate of the cube's corner in edges (18
+// bits each: cells beyond ±131,072 edges from the origin share keys with nearer ones, which
+// only makes their regions larger), then the normals' bucket (8 bits).
+constexpr int kLevelShift = 62;
+constexpr std::uint64_t kCoordMask = 0x3ffffu;
+constexpr std::int64_t kCoordOrigin = std::int64_t(1) << 17;
+constexpr int coordShift(int axis) { return 8 + 18 * (2 - axis); }
+static_assert(kNormalBuckets * kNormalBuckets <= 256 && kMaxCellLevel < 4);
 
 // The bucket of unit vector `n` in an octahedral map of kNormalBuckets² buckets.
 int bucketOf(glm::vec3 n) {
@@ -69,29 +66,25 @@ bool holds(const ShadingRegion& g, glm::vec3 p, glm::vec3 n) {
 
 }  // namespace
 
-// A key: the level (2 bits), then each coordinate of the cube's corner in edges (18 bits:
-// cells beyond ±131,072 edges from the origin share keys with nearer ones, which only makes
-// their regions larger), then the normals' bucket (8 bits).
-std::uint64_t CellCuts::keyOf(const GBufferPixels& px, std::size_t i, int level) const {
-  const glm::vec3 p = positionAt(px, i);
-  std::uint64_t key =
-      std::uint64_t(level) << 62 | std::uint64_t(bucketOf(glm::normalize(normalAt(px, i))));
+std::uint64_t CellCuts::keyOf(glm::vec3 p, glm::vec3 n, int level) const {
+  std::uint64_t key = std::uint64_t(level) << kLevelShift | std::uint64_t(bucketOf(n));
   const float edge = size_ / float(1 << level);
   for (int a = 0; a < 3; ++a) {
     const float q = std::floor(p[a] / edge);
     const std::int64_t c = std::isfinite(q) ? std::int64_t(std::clamp(q, -1e9f, 1e9f)) : 0;
-    key |= (std::uint64_t(c + (std::int64_t(1) << 17)) & 0x3ffffu) << (8 + 18 * (2 - a));
+    key |= (std::uint64_t(c + kCoordOrigin) & kCoordMask) << coordShift(a);
   }
   return key;
 }
 
-float CellCuts::edgeOf(std::uint64_t key) const { return size_ / float(1 << int(key >> 62)); }
+float CellCuts::edgeOf(std::uint64_t key) const {
+  return size_ / float(1 << int(key >> kLevelShift));
+}
 
 glm::vec3 CellCuts::cornerOf(std::uint64_t key) const {
   glm::vec3 corner;
   for (int a = 0; a < 3; ++a) {
-    const std::int64_t c =
-        std::int64_t((key >> (8 + 18 * (2 - a))) & 0x3ffffu) - (std::int64_t(1) << 17);
+    const std::int64_t c = std::int64_t((key >> coordShift(a)) & kCoordMask) - kCoordOrigin;
     corner[a] = float(c) * edgeOf(key);
   }
   return corner;
@@ -141,7 +134,7 @@ std::vector<int> CellCuts::grow(const GBufferPixels& px, const std::vector<int>&
     const glm::vec3 p = positionAt(px, i);
     g.lo = glm::min(g.lo, p);
     g.hi = glm::max(g.hi, p);
-    g.normals += glm::normalize(normalAt(px, i));
+    g.normals += unitNormalAt(px, i);
   }
   // The new cones' axes: the old axis and the new normals' mean, halfway; the cone then holds
   // the old one and every new normal.
@@ -164,8 +157,8 @@ std::vector<int> CellCuts::grow(const GBufferPixels& px, const std::vector<int>&
     if (!outside[i]) continue;
     const int c = cellOfPixel[i];
     Growth& g = growth[std::size_t(growthOf[std::size_t(c)])];
-    g.lowest = std::min(
-        g.lowest, glm::dot(glm::normalize(normalAt(px, i)), cells_[std::size_t(c)].region.axis));
+    g.lowest =
+        std::min(g.lowest, glm::dot(unitNormalAt(px, i), cells_[std::size_t(c)].region.axis));
   }
   for (std::size_t k = 0; k < grown.size(); ++k) {
     Cell& cell = cells_[std::size_t(grown[k])];
@@ -225,14 +218,16 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   std::vector<std::uint8_t> outside(n, 0);
   std::vector<std::size_t> pending, later;
   for (std::size_t i = 0; i < n; ++i) {
-    if (shareable(px, i)) pending.push_back(i);
+    if (sharesCuts(px, i) && glm::dot(normalAt(px, i), normalAt(px, i)) > 0.0f)
+      pending.push_back(i);
   }
   for (int level = 0; level <= kMaxCellLevel && !pending.empty(); ++level) {
     std::uint64_t lastKey = ~std::uint64_t(0);
     int last = -1;
     later.clear();
     for (const std::size_t i : pending) {
-      const std::uint64_t key = keyOf(px, i, level);
+      const glm::vec3 p = positionAt(px, i), n = unitNormalAt(px, i);
+      const std::uint64_t key = keyOf(p, n, level);
       if (key != lastKey) {
         const auto [it, added] = index_.try_emplace(key, int(cells_.size()));
         if (added) {
@@ -249,8 +244,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
         continue;
       }
       cellOfPixel[i] = last;
-      outside[i] =
-          cell.empty || !holds(cell.region, positionAt(px, i), glm::normalize(normalAt(px, i)));
+      outside[i] = cell.empty || !holds(cell.region, p, n);
     }
     const std::vector<int> grown = grow(px, cellOfPixel, outside);
     for (const std::size_t i : pending) outside[i] = 0;

@@ -74,8 +74,9 @@ class CellCuts {
     std::vector<std::uint32_t> entries;
     long long lastUsed = -1;  // the last frame that used it
   };
-  // Pixel i's cell at `level`: its cube (of edge cellSize() / 2^level) and its normal's bucket.
-  std::uint64_t keyOf(const GBufferPixels& px, std::size_t i, int level) const;
+  // The cell at `level` of position p and unit normal n: its cube (of edge cellSize() /
+  // 2^level) and the normal's bucket.
+  std::uint64_t keyOf(glm::vec3 p, glm::vec3 n, int level) const;
   // The edge of a cell's cube, and its corner of least coordinates.
   float edgeOf(std::uint64_t key) const;
   glm::vec3 cornerOf(std::uint64_t key) const;

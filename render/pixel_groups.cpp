@@ -8,16 +8,6 @@ namespace manylight {
 
 namespace {
 
-glm::vec3 normalAt(const GBufferPixels& px, int pixel) {
-  const float* n = px.normal + std::size_t(pixel) * 4;
-  return {n[0], n[1], n[2]};
-}
-
-glm::vec3 positionAt(const GBufferPixels& px, int pixel) {
-  const float* p = px.position + std::size_t(pixel) * 4;
-  return {p[0], p[1], p[2]};
-}
-
 // The normal of `pixels` with the smallest cosine to `u`.
 glm::vec3 farthestNormal(const GBufferPixels& px, const std::vector<int>& pixels, glm::vec3 u) {
   glm::vec3 best = normalAt(px, pixels.front());

@@ -19,6 +19,21 @@ struct GBufferPixels {
   const float* specular = nullptr;  // rgb: Phong specular colour
 };
 
+// Pixel i's position and normal (as stored: not always of unit length).
+inline glm::vec3 positionAt(const GBufferPixels& px, std::size_t i) {
+  return {px.position[4 * i], px.position[4 * i + 1], px.position[4 * i + 2]};
+}
+inline glm::vec3 normalAt(const GBufferPixels& px, std::size_t i) {
+  return {px.normal[4 * i], px.normal[4 * i + 1], px.normal[4 * i + 2]};
+}
+
+// Whether pixel i may take a shared cut: covered, and Lambert only (a specular pixel's
+// bounds are not per unit albedo, so it cuts for itself).
+inline bool sharesCuts(const GBufferPixels& px, std::size_t i) {
+  const float* ks = px.specular + 4 * i;
+  return px.normal[4 * i + 3] != 0.0f && ks[0] == 0.0f && ks[1] == 0.0f && ks[2] == 0.0f;
+}
+
 // The shading points of a group: their box, and a cone around `axis` holding their normals.
 struct ShadingRegion {
   glm::vec3 pMin, pMax, axis;

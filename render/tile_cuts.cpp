@@ -90,11 +90,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
       for (int y = top.y0; y < std::min(top.y0 + tileSize, px.height); ++y) {
         for (int x = top.x0; x < std::min(top.x0 + tileSize, px.width); ++x) {
           const std::size_t i = std::size_t(y) * px.width + x;
-          if (only && !(*only)[i]) continue;
-          const float* ks = px.specular + 4 * i;
-          // Specular pixels' bounds are not per unit albedo: they cut for themselves.
-          if (px.normal[4 * i + 3] != 0.0f && ks[0] == 0.0f && ks[1] == 0.0f && ks[2] == 0.0f)
-            top.pixels.push_back(int(i));
+          if ((!only || (*only)[i]) && sharesCuts(px, i)) top.pixels.push_back(int(i));
         }
       }
       if (!top.pixels.empty()) todo.push_back(std::move(top));
