@@ -204,7 +204,6 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   }
   if (words_ > maxWords_) dropUnused();
   if (size_ <= 0.0f) size_ = cellSizeOf(px);
-  made_ = kept_ = 0;
   frameRegions_.clear();
   if (!(size_ > 0.0f) || !std::isfinite(size_)) {
     size_ = 0.0f;  // nothing on screen to size cells by: every pixel cuts for itself
@@ -291,7 +290,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     int& f = frameCut[std::size_t(c)];
     if (f == -2) {
       const Cell& cell = cells_[std::size_t(c)];
-      if (!made[std::size_t(c)]) ++kept_;
+      if (!made[std::size_t(c)]) ++out.kept;
       f = cell.perPixel ? -1 : int(used.size());
       if (f >= 0) {
         used.push_back(c);
@@ -337,7 +336,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   out.perPixelGroups = squares.perPixelGroups;
   out.surfaceSplits = squares.surfaceSplits;
   out.boundEvaluations += squares.boundEvaluations;
-  made_ = int(grownAll.size()) + squares.sharedCuts + squares.perPixelGroups;
+  out.made = int(grownAll.size()) + squares.made;
   return out;
 }
 

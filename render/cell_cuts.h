@@ -49,15 +49,12 @@ class CellCuts {
       : cutter_(cutter), maxWords_(maxWords) {}
 
   // This frame's cuts, as TileCutter::cut gives them: those of its cells, found for cells that
-  // are new or grew, on `threads` threads. The first frame fixes the cells' size. Another
-  // rule than the last frame's starts over.
+  // are new or grew, on `threads` threads. TileCuts::made counts those cells (a split one
+  // too) and the squares' cuts; TileCuts::kept, the cells whose cut was kept. The first frame fixes
+  // the cells' size. Another rule than the last frame's starts over.
   TileCuts cut(const GBufferPixels& pixels, const CutRule& rule, int threads);
 
   float cellSize() const { return size_; }
-  // Of the last frame: its shared cuts that were found (of cells that were new or grew, and of
-  // squares for the pixels of full cells), and its cells whose cut was kept.
-  int made() const { return made_; }
-  int kept() const { return kept_; }
   // Cells kept, used by the last frame or not.
   std::size_t cellCount() const { return cells_.size(); }
   // The region each of the last frame's cells' cuts holds for, by cut number (cutOfPixel);
@@ -97,7 +94,6 @@ class CellCuts {
   std::vector<std::uint64_t> keys_;  // key of a cell
   std::size_t words_ = 0;            // entry words the cells hold
   long long frame_ = 0;              // frames cut
-  int made_ = 0, kept_ = 0;
   std::vector<ShadingRegion> frameRegions_;
 };
 

@@ -75,7 +75,6 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   } else {
     tileInfo_ = {};
     cutMs_ = 0.0;
-    cutsMade_ = cutsKept_ = 0;
   }
   const gl::Program& shader = program(defines);
   shader.use();
@@ -135,12 +134,8 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& 
   if (settings.keepCuts) {
     if (!cells_) cells_ = std::make_unique<CellCuts>(*tileCutter_);
     tileInfo_ = cells_->cut(pixels, rule, threads);
-    cutsMade_ = cells_->made();
-    cutsKept_ = cells_->kept();
   } else {
     tileInfo_ = tileCutter_->cut(pixels, tileSize, rule, threads);
-    cutsMade_ = tileInfo_.sharedCuts + tileInfo_.perPixelGroups;
-    cutsKept_ = 0;
   }
   tileCuts_ = gl::uploadTextureBuffer(tileInfo_.texels.data(), tileInfo_.texels.size() / 4,
                                       GL_RGBA32UI, "tile cuts");

@@ -78,8 +78,8 @@ class LightcutsMethod {
   double cutMs() const { return cutMs_; }
   // Of the last light() call's shared cuts: how many were found, and how many were kept from
   // earlier frames (LightcutsSettings::keepCuts).
-  int cutsMade() const { return cutsMade_; }
-  int cutsKept() const { return cutsKept_; }
+  int cutsMade() const { return tileInfo_.made; }
+  int cutsKept() const { return tileInfo_.kept; }
 
   // The node colour coding of the packed trees: its fit and the error it adds.
   const NodeColourCoder& nodeColour() const { return layout_.colour; }
@@ -99,7 +99,6 @@ class LightcutsMethod {
   mutable TileCuts tileInfo_;                // its counts (the texels are dropped)
   mutable std::vector<float> readback_;
   mutable double cutMs_ = 0.0;
-  mutable int cutsMade_ = 0, cutsKept_ = 0;
   bool distance_;
   int width_, height_;
   gl::Texture statsTarget_;

@@ -159,6 +159,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     out.surfaceSplits += parts[k].splits;
   }
   out.sharedCuts = int(cuts);
+  out.made = out.sharedCuts + out.perPixelGroups;
   for (std::size_t i = 0; i < out.cutOfPixel.size(); ++i) {
     std::uint32_t& c = out.cutOfPixel[i];
     if (c == kNoSharedCut) continue;

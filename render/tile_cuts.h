@@ -65,6 +65,9 @@ struct TileCuts {
   int sharedCuts = 0;                     // groups with a shared cut
   int perPixelGroups = 0;                 // covered groups left to per-pixel cuts
   int surfaceSplits = 0;                  // groups split in two by their normals
+  // Cuts found on the CPU for this frame (shared, or left to per-pixel cuts), and cuts kept
+  // from earlier frames (render/cell_cuts.h).
+  int made = 0, kept = 0;
 };
 
 inline constexpr std::uint32_t kNoSharedCut = 0xffffffffu;

@@ -340,18 +340,18 @@ TEST(CellCuts, KeptCutsHoldForEveryPixelAsTheViewMoves) {
     }
     EXPECT_EQ(outside, 0);
     if (pan == 0.0f && !before.texels.empty()) {  // the same frame again
-      EXPECT_EQ(cells.made(), 0);
+      EXPECT_EQ(cuts.made, 0);
       EXPECT_EQ(cuts.texels, before.texels);
       EXPECT_EQ(cuts.cutOfPixel, before.cutOfPixel);
     }
     if (pan == 0.05f) {  // a small pan: most cells keep their cuts
-      EXPECT_GT(cells.kept(), 3 * cells.made());
+      EXPECT_GT(cuts.kept, 3 * cuts.made);
     }
     before = cuts;
   }
-  cells.cut(SyntheticGBuffer(2.0f).pixels(), CutRule{0.05f, true, 8000}, 2);
-  EXPECT_EQ(cells.kept(), 0);  // another ε: every cut anew
-  EXPECT_GT(cells.made(), 0);
+  const TileCuts other = cells.cut(SyntheticGBuffer(2.0f).pixels(), CutRule{0.05f, true, 8000}, 2);
+  EXPECT_EQ(other.kept, 0);  // another ε: every cut anew
+  EXPECT_GT(other.made, 0);
 }
 
 // Past the memory limit, the cells the last frame did not use are dropped (and found again if
@@ -364,17 +364,14 @@ TEST(CellCuts, PastTheLimitUnusedCellsAreDropped) {
   const SyntheticGBuffer here(0.0f), there(3.0f);
   cells.cut(here.pixels(), rule, 2);
   const std::size_t first = cells.cellCount();
-  cells.cut(here.pixels(), rule, 2);  // over the limit, but every cell was in use
-  EXPECT_EQ(cells.made(), 0);
+  EXPECT_EQ(cells.cut(here.pixels(), rule, 2).made, 0);  // over the limit, but all in use
   EXPECT_EQ(cells.cellCount(), first);
-  cells.cut(there.pixels(), rule, 2);
+  const TileCuts seen = cells.cut(there.pixels(), rule, 2);
   EXPECT_GT(cells.cellCount(), first);
-  const int seenThere = cells.made() + cells.kept();
-  cells.cut(there.pixels(), rule, 2);  // drops the cells only `here` used
-  EXPECT_EQ(cells.made(), 0);
-  EXPECT_EQ(cells.cellCount(), std::size_t(seenThere));
+  EXPECT_EQ(cells.cut(there.pixels(), rule, 2).made, 0);  // drops the cells only `here` used
+  EXPECT_EQ(cells.cellCount(), std::size_t(seen.made + seen.kept));
   const TileCuts back = cells.cut(here.pixels(), rule, 2);  // found again
-  EXPECT_GT(cells.made(), 0);
+  EXPECT_GT(back.made, 0);
   EXPECT_EQ(checkCuts(here, lights, back).failing, 0);
 }
 
