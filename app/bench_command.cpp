@@ -205,9 +205,8 @@ std::string buildId() {
 }
 
 // --resume: the cases already measured in a.json with the same settings, build and GL
-// renderer as `json`, whose
-// runs (and rows of a.csv) are kept in `json` and `csv`. Throws Error when the files
-// disagree with the settings.
+// renderer as `json`, whose runs (and rows of a.csv) are kept in `json` and `csv`. Throws
+// Error when the files disagree with them.
 std::set<std::string> resumeFrom(const BenchArgs& a, nlohmann::json* json, std::string* csv) {
   std::set<std::string> done;
   if (a.json.empty()) throw Error("bench: --resume needs --json, which records the settings");

@@ -28,33 +28,6 @@ struct Errors {
   double averageCut = 0.0;
 };
 
-Errors compareImages(const Image& image, const Image& reference, const CutStats& cuts,
-                     double epsilon);
-
-// `lights` in `room` through `method` and `mode`, against the reference (compareImages).
-Errors compareWithReference(const Scene& room, const std::vector<Light>& lights, ErrorMode mode,
-                            double epsilon, const std::string& name,
-                            Method method = Method::Lightcuts,
-                            NodeColourCoding coding = NodeColourCoding::Rgb9e5) {
-  Scene scene = room;
-  scene.lights = lights;
-  RenderRequest request;
-  request.width = kWidth;
-  request.height = kHeight;
-  const RenderOutcome reference = renderScene(scene, request);
-  request.method = method;
-  request.lightcuts.mode = mode;
-  request.lightcuts.error = float(epsilon);
-  request.lightcuts.maxCut = kMaxCut;
-  request.lightcuts.trees.nodeColour = coding;
-  const RenderOutcome cut = renderScene(scene, request);
-  Errors e = compareImages(cut.image, reference.image, cut.frame.cuts, epsilon);
-  std::cout << name << ": " << e.compared << " pixels, worst " << e.worst << ", p99 " << e.p99
-            << ", average cut " << e.averageCut << ", at max cut " << e.atMaxCut
-            << ", node colour slack " << cut.nodeColour.slack << "\n";
-  return e;
-}
-
 // Per pixel: max over channels of |image − reference| / max over channels of reference;
 // pixels whose cut hit the maximum (`cuts`) are counted apart.
 Errors compareImages(const Image& image, const Image& reference, const CutStats& cuts,
@@ -85,6 +58,30 @@ Errors compareImages(const Image& image, const Image& reference, const CutStats&
     std::sort(relative.begin(), relative.end());
     e.p99 = relative[std::size_t(0.99 * double(relative.size() - 1))];
   }
+  return e;
+}
+
+// `lights` in `room` through `method` and `mode`, against the reference (compareImages).
+Errors compareWithReference(const Scene& room, const std::vector<Light>& lights, ErrorMode mode,
+                            double epsilon, const std::string& name,
+                            Method method = Method::Lightcuts,
+                            NodeColourCoding coding = NodeColourCoding::Rgb9e5) {
+  Scene scene = room;
+  scene.lights = lights;
+  RenderRequest request;
+  request.width = kWidth;
+  request.height = kHeight;
+  const RenderOutcome reference = renderScene(scene, request);
+  request.method = method;
+  request.lightcuts.mode = mode;
+  request.lightcuts.error = float(epsilon);
+  request.lightcuts.maxCut = kMaxCut;
+  request.lightcuts.trees.nodeColour = coding;
+  const RenderOutcome cut = renderScene(scene, request);
+  Errors e = compareImages(cut.image, reference.image, cut.frame.cuts, epsilon);
+  std::cout << name << ": " << e.compared << " pixels, worst " << e.worst << ", p99 " << e.p99
+            << ", average cut " << e.averageCut << ", at max cut " << e.atMaxCut
+            << ", node colour slack " << cut.nodeColour.slack << "\n";
   return e;
 }
 
