@@ -204,7 +204,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   }
   if (words_ > maxWords_) dropUnused();
   if (size_ <= 0.0f) size_ = cellSizeOf(px);
-  frameRegions_.clear();
+  frameCells_.clear();
   if (!(size_ > 0.0f) || !std::isfinite(size_)) {
     size_ = 0.0f;  // nothing on screen to size cells by: every pixel cuts for itself
     return out;
@@ -235,9 +235,9 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
         }
         lastKey = key;
         last = it->second;
+        cells_[std::size_t(last)].lastUsed = frame_;
       }
-      Cell& cell = cells_[std::size_t(last)];
-      cell.lastUsed = frame_;
+      const Cell& cell = cells_[std::size_t(last)];
       if (cell.split) {
         later.push_back(i);
         continue;
@@ -282,7 +282,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   // surface and into quarters as needed), this frame only.
   std::vector<std::uint8_t> made(cells_.size(), 0), full(n, 0);
   for (const int c : grownAll) made[std::size_t(c)] = 1;
-  std::vector<int> frameCut(cells_.size(), -2), used;
+  std::vector<int> frameCut(cells_.size(), -2);
   bool anyFull = false;
   for (std::size_t i = 0; i < n; ++i) {
     const int c = cellOfPixel[i];
@@ -291,11 +291,8 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     if (f == -2) {
       const Cell& cell = cells_[std::size_t(c)];
       if (!made[std::size_t(c)]) ++out.kept;
-      f = cell.perPixel ? -1 : int(used.size());
-      if (f >= 0) {
-        used.push_back(c);
-        frameRegions_.push_back(cell.region);
-      }
+      f = cell.perPixel ? -1 : int(frameCells_.size());
+      if (f >= 0) frameCells_.push_back(c);
     }
     if (f >= 0) {
       out.cutOfPixel[i] = std::uint32_t(f);
@@ -306,22 +303,22 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   }
   const TileCuts squares =
       anyFull ? cutter_.cut(px, kFallbackTile, rule, threads, &full) : TileCuts{};
-  const std::size_t cuts = used.size() + std::size_t(squares.sharedCuts);
+  const std::size_t cuts = frameCells_.size() + std::size_t(squares.sharedCuts);
   std::size_t cellTexels = 0;
-  for (const int c : used) cellTexels += cells_[std::size_t(c)].entries.size() / 4;
+  for (const int c : frameCells_) cellTexels += cells_[std::size_t(c)].entries.size() / 4;
   ++frame_;
   const std::size_t squareHeads = 2 * std::size_t(squares.sharedCuts);
   out.texels.assign((2 * cuts + cellTexels) * 4 + squares.texels.size() - squareHeads * 4, 0u);
   std::size_t next = 2 * cuts;
-  for (std::size_t u = 0; u < used.size(); ++u) {
-    const Cell& cell = cells_[std::size_t(used[u])];
+  for (std::size_t u = 0; u < frameCells_.size(); ++u) {
+    const Cell& cell = cells_[std::size_t(frameCells_[u])];
     cell.cut.writeHeader(std::uint32_t(next), out.texels.data() + 8 * u);
     std::copy(cell.entries.begin(), cell.entries.end(),
               out.texels.begin() + std::ptrdiff_t(next * 4));
     next += cell.entries.size() / 4;
   }
   // The squares' headers, their first entries moved past the cells' entries.
-  std::uint32_t* head = out.texels.data() + 8 * used.size();
+  std::uint32_t* head = out.texels.data() + 8 * frameCells_.size();
   for (std::size_t k = 0; k < std::size_t(squares.sharedCuts); ++k, head += 8) {
     std::copy_n(squares.texels.data() + 8 * k, 8, head);
     head[0] = std::uint32_t(head[0] - squareHeads + next);
@@ -330,7 +327,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
             out.texels.begin() + std::ptrdiff_t(next * 4));
   for (std::size_t i = 0; i < n; ++i) {
     if (squares.cutOfPixel.empty() || squares.cutOfPixel[i] == kNoSharedCut) continue;
-    out.cutOfPixel[i] = std::uint32_t(used.size()) + squares.cutOfPixel[i];
+    out.cutOfPixel[i] = std::uint32_t(frameCells_.size()) + squares.cutOfPixel[i];
   }
   out.sharedCuts = int(cuts);
   out.perPixelGroups = squares.perPixelGroups;

@@ -57,9 +57,12 @@ class CellCuts {
   float cellSize() const { return size_; }
   // Cells kept, used by the last frame or not.
   std::size_t cellCount() const { return cells_.size(); }
-  // The region each of the last frame's cells' cuts holds for, by cut number (cutOfPixel);
-  // the squares' cuts are numbered after them.
-  const std::vector<ShadingRegion>& regions() const { return frameRegions_; }
+  // The last frame's cells' cuts (the squares' cuts are numbered after them), and the region
+  // that the cut numbered `k` (cutOfPixel) holds for.
+  std::size_t frameCellCuts() const { return frameCells_.size(); }
+  const ShadingRegion& region(std::size_t k) const {
+    return cells_[std::size_t(frameCells_[k])].region;
+  }
 
  private:
   struct Cell {
@@ -94,7 +97,7 @@ class CellCuts {
   std::vector<std::uint64_t> keys_;  // key of a cell
   std::size_t words_ = 0;            // entry words the cells hold
   long long frame_ = 0;              // frames cut
-  std::vector<ShadingRegion> frameRegions_;
+  std::vector<int> frameCells_;      // the cell of each of the last frame's cells' cuts
 };
 
 }  // namespace manylight

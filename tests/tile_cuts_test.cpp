@@ -336,7 +336,7 @@ TEST(CellCuts, KeptCutsHoldForEveryPixelAsTheViewMoves) {
     int outside = 0;
     for (std::size_t i = 0; i < cuts.cutOfPixel.size(); ++i) {
       const std::uint32_t k = cuts.cutOfPixel[i];
-      if (k < cells.regions().size() && !regionHolds(cells.regions()[k], g, i)) ++outside;
+      if (k < cells.frameCellCuts() && !regionHolds(cells.region(k), g, i)) ++outside;
     }
     EXPECT_EQ(outside, 0);
     if (pan == 0.0f && !before.texels.empty()) {  // the same frame again
@@ -386,8 +386,8 @@ TEST(CellCuts, FullCellsSplitThenFallBackToSquares) {
   const SyntheticGBuffer g;
   const TileCuts cuts = cells.cut(g.pixels(), CutRule{0.02f, true, 1600}, 2);
   const Checked c = checkCuts(g, lights, cuts);
-  EXPECT_GT(cells.cellCount(), 2 * cells.regions().size());         // the split cells are kept
-  EXPECT_GT(std::size_t(cuts.sharedCuts), cells.regions().size());  // squares' cuts after cells'
+  EXPECT_GT(cells.cellCount(), 2 * cells.frameCellCuts());         // the split cells are kept
+  EXPECT_GT(std::size_t(cuts.sharedCuts), cells.frameCellCuts());  // squares' cuts after cells'
   EXPECT_GT(c.sharedPixels, 1000);
   EXPECT_EQ(c.failing, 0);
   EXPECT_LE(c.worstOverBound, 1.0001);
