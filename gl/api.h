@@ -13,6 +13,9 @@
   X(PFNGLCLEARPROC, glClear)                                     \
   X(PFNGLCLEARCOLORPROC, glClearColor)                           \
   X(PFNGLCLEARBUFFERFVPROC, glClearBufferfv)                     \
+  X(PFNGLCLEARBUFFERFIPROC, glClearBufferfi)                     \
+  X(PFNGLSTENCILFUNCPROC, glStencilFunc)                         \
+  X(PFNGLSTENCILOPPROC, glStencilOp)                             \
   X(PFNGLENABLEPROC, glEnable)                                   \
   X(PFNGLDISABLEPROC, glDisable)                                 \
   X(PFNGLBLENDFUNCPROC, glBlendFunc)                             \

@@ -38,6 +38,11 @@ LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& l
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   }
+  if (tileCutter_) {  // the stencil of the two lighting passes
+    glBindTexture(GL_TEXTURE_2D, stencil_.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, width_, height_, 0, GL_DEPTH_STENCIL,
+                 GL_UNSIGNED_INT_24_8, nullptr);
+  }
   glBindTexture(GL_TEXTURE_2D, statsTarget_.id());
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width_, height_, 0, GL_RGBA, GL_FLOAT, nullptr);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -47,6 +52,10 @@ LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& l
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                          gbuffer.target(GBuffer::kRadiance).id(), 0);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, statsTarget_.id(), 0);
+  if (tileCutter_) {
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
+                           stencil_.id(), 0);
+  }
   const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glDrawBuffers(2, buffers);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
@@ -70,44 +79,63 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   if (colour.coding() == NodeColourCoding::Fitted) defines.push_back("FITTED_COLOUR");
   const int tileSize = distance_ ? 1 : std::max(settings.tileSize, 1);
   if (tileSize > 1) {
-    defines.push_back("TILE_CUTS");
     cutTiles(gbuffer, settings, tileSize);
   } else {
     tileInfo_ = {};
     cutMs_ = 0.0;
   }
-  const gl::Program& shader = program(defines);
-  shader.use();
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   const float zero[4] = {0, 0, 0, 0};
   glClearBufferfv(GL_COLOR, 1, zero);
-  bindLightingInputs(shader, gbuffer, scene, view);
-  glActiveTexture(GL_TEXTURE5);
-  glBindTexture(GL_TEXTURE_BUFFER, nodes_.texture.id());
-  glUniform1i(shader.uniform("uNodes"), 5);
-  glUniform3i(shader.uniform("uTreeBase"), layout_.base[0], layout_.base[1], layout_.base[2]);
-  glUniform3i(shader.uniform("uTreeLeaves"), layout_.leaves[0], layout_.leaves[1],
-              layout_.leaves[2]);
-  if (colour.coding() == NodeColourCoding::Rgb9e5) {
-    glUniform1f(shader.uniform("uColourScale"), colour.scale());
-  } else {
-    glUniform2f(shader.uniform("uColourFit"), float(colour.fit().a), float(colour.fit().gamma));
-  }
-  glUniform2f(shader.uniform("uColourSlack"), float(colour.slack), float(colour.slackFloor));
-  glUniform1f(shader.uniform("uError"), settings.error);
-  glUniform1i(shader.uniform("uErrorMode"), settings.mode == ErrorMode::Total ? 1 : 0);
-  glUniform1i(shader.uniform("uMaxCut"), maxCut);
-  glUniform1f(shader.uniform("uInfluence"), 1.0f / std::sqrt(std::max(settings.error, 1e-6f)));
+  // One lighting pass with `extra` defines.
+  auto pass = [&](std::initializer_list<const char*> extra) {
+    std::vector<std::string> all = defines;
+    all.insert(all.end(), extra.begin(), extra.end());
+    const gl::Program& shader = program(all);
+    shader.use();
+    bindLightingInputs(shader, gbuffer, scene, view);
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_BUFFER, nodes_.texture.id());
+    glUniform1i(shader.uniform("uNodes"), 5);
+    glUniform3i(shader.uniform("uTreeBase"), layout_.base[0], layout_.base[1], layout_.base[2]);
+    glUniform3i(shader.uniform("uTreeLeaves"), layout_.leaves[0], layout_.leaves[1],
+                layout_.leaves[2]);
+    if (colour.coding() == NodeColourCoding::Rgb9e5) {
+      glUniform1f(shader.uniform("uColourScale"), colour.scale());
+    } else {
+      glUniform2f(shader.uniform("uColourFit"), float(colour.fit().a), float(colour.fit().gamma));
+    }
+    glUniform2f(shader.uniform("uColourSlack"), float(colour.slack), float(colour.slackFloor));
+    glUniform1f(shader.uniform("uError"), settings.error);
+    glUniform1i(shader.uniform("uErrorMode"), settings.mode == ErrorMode::Total ? 1 : 0);
+    glUniform1i(shader.uniform("uMaxCut"), maxCut);
+    glUniform1f(shader.uniform("uInfluence"), 1.0f / std::sqrt(std::max(settings.error, 1e-6f)));
+    if (tileSize > 1) {
+      glActiveTexture(GL_TEXTURE6);
+      glBindTexture(GL_TEXTURE_BUFFER, tileCuts_.texture.id());
+      glUniform1i(shader.uniform("uTileCuts"), 6);
+      glActiveTexture(GL_TEXTURE7);
+      glBindTexture(GL_TEXTURE_2D, cutOfPixel_.id());
+      glUniform1i(shader.uniform("uCutOfPixel"), 7);
+    }
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  };
   if (tileSize > 1) {
-    glActiveTexture(GL_TEXTURE6);
-    glBindTexture(GL_TEXTURE_BUFFER, tileCuts_.texture.id());
-    glUniform1i(shader.uniform("uTileCuts"), 6);
-    glActiveTexture(GL_TEXTURE7);
-    glBindTexture(GL_TEXTURE_2D, cutOfPixel_.id());
-    glUniform1i(shader.uniform("uCutOfPixel"), 7);
+    // The pixels that take their group's cut set the stencil to 0; the rest (1) then walk
+    // cuts of their own (glsl/lighting_lightcuts.frag says why in two passes).
+    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 1);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 0, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    pass({"TILE_CUTS", "SHARED_PASS"});
+    glStencilFunc(GL_EQUAL, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    pass({"OWN_PASS"});
+    glDisable(GL_STENCIL_TEST);
+  } else {
+    pass({});
   }
-  glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_BLEND);
   glActiveTexture(GL_TEXTURE0);
 }

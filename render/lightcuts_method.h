@@ -102,7 +102,8 @@ class LightcutsMethod {
   bool distance_;
   int width_, height_;
   gl::Texture statsTarget_;
-  gl::Framebuffer framebuffer_;  // radiance + statistics
+  gl::Texture stencil_;          // with shared cuts: which pixels walk cuts of their own
+  gl::Framebuffer framebuffer_;  // radiance + statistics (+ stencil)
 };
 
 }  // namespace manylight

@@ -24,7 +24,8 @@
 // U and B are per unit albedo (Lambert only), so the check is exactly the per-pixel rule
 // with bounds at least the pixel's own: the total rule's guarantee is kept. A pixel whose
 // check fails, a specular pixel, and every pixel of a group left to per-pixel cuts (a cut
-// over the maximum even at the finest size) walks its own cut as before.
+// over the maximum even at the finest size) walks its own cut as before, in a second pass over
+// just those pixels (the stencil marks them; glsl/lighting_lightcuts.frag).
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
