@@ -94,6 +94,20 @@ void FarField::add(glm::vec3 position, float invRange2, const Cone* cone, glm::v
   ++count_;
 }
 
+FarField FarField::movedTo(glm::vec3 centre) const {
+  FarField moved(*this);
+  moved.centre_ = glm::dvec3(centre);
+  const glm::dvec3 shift = moved.centre_ - centre_;
+  for (int c = 0; c < 3; ++c) moved.f_[std::size_t(c)] += j_[std::size_t(c)] * shift;
+  return moved;
+}
+
+glm::vec3 FarField::irradianceAtCentre(glm::vec3 n) const {
+  const glm::dvec3 normal(n);
+  return {float(glm::dot(normal, f_[0])), float(glm::dot(normal, f_[1])),
+          float(glm::dot(normal, f_[2]))};
+}
+
 void FarField::write(std::vector<std::uint32_t>& words) const {
   writeTexel(words, centre_);
   for (const glm::dvec3& f : f_) writeTexel(words, f);

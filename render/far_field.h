@@ -77,6 +77,10 @@ class FarField {
   };
   // A spot entry: a point entry times its cone.
   void addSpot(glm::vec3 position, float invRange2, const Cone& cone, glm::vec3 intensity);
+  // The same linear function about another centre (exact: F + J (centre − c), J).
+  FarField movedTo(glm::vec3 centre) const;
+  // Its irradiance at its centre for unit normal n, per channel: n · F.
+  glm::vec3 irradianceAtCentre(glm::vec3 n) const;
   bool empty() const { return count_ == 0; }
   int count() const { return count_; }
   // Appends the kFarFieldTexels texels.

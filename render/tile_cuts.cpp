@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "bake/light_tree_layout.h"
 #include "render/cut_heap.h"
@@ -58,8 +59,10 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   TileCuts out;
   const int fine = std::min(kFinestTile, tileSize);
   out.cutOfPixel.assign(std::size_t(px.width) * px.height, kNoSharedCut);
-  const int coarseX = (px.width + tileSize - 1) / tileSize;
-  const int coarse = coarseX * ((px.height + tileSize - 1) / tileSize);
+  // Squares of `top` pixels find seed cuts for their quarters, down to squares of tileSize.
+  const int top = tileSize << kSeedLevels;
+  const int coarseX = (px.width + top - 1) / top;
+  const int coarse = coarseX * ((px.height + top - 1) / top);
   threads = std::clamp(threads, 1, std::max(coarse, 1));
 
   // Per thread: its cuts (numbered in order; cutOfPixel holds these numbers until the merge)
@@ -73,10 +76,26 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   };
   std::vector<Part> parts(static_cast<std::size_t>(threads));
 
-  // A group of a square's covered pixels (indices y · width + x).
+  // A group of a square's covered pixels (indices y · width + x), and the seed its cut
+  // starts from.
   struct Group {
     int x0, y0, size;
     std::vector<int> pixels;
+    std::shared_ptr<const CutSeed> seed;
+  };
+  auto quarters = [&](Group& group, std::vector<Group>& todo,
+                      const std::shared_ptr<const CutSeed>& seed) {
+    const int h = group.size / 2;
+    Group quarter[4];
+    for (int q = 0; q < 4; ++q)
+      quarter[q] = {group.x0 + (q & 1) * h, group.y0 + (q >> 1) * h, h, {}, seed};
+    for (const int i : group.pixels) {
+      const int x = i % px.width, y = i / px.width;
+      quarter[(x >= group.x0 + h ? 1 : 0) + (y >= group.y0 + h ? 2 : 0)].pixels.push_back(i);
+    }
+    for (Group& q : quarter) {
+      if (!q.pixels.empty()) todo.push_back(std::move(q));
+    }
   };
   // Squares are dealt out round robin: square t is part partOf(t)'s. The merge below
   // renumbers each pixel's cut by its square's part.
@@ -84,16 +103,17 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   auto work = [&](int index) {
     Part& part = parts[std::size_t(index)];
     std::vector<Group> todo;
+    std::vector<std::uint32_t> unused;
     for (int t = 0; t < coarse; ++t) {
       if (partOf(t) != index) continue;
-      Group top{(t % coarseX) * tileSize, (t / coarseX) * tileSize, tileSize, {}};
-      for (int y = top.y0; y < std::min(top.y0 + tileSize, px.height); ++y) {
-        for (int x = top.x0; x < std::min(top.x0 + tileSize, px.width); ++x) {
+      Group first{(t % coarseX) * top, (t / coarseX) * top, top, {}, nullptr};
+      for (int y = first.y0; y < std::min(first.y0 + top, px.height); ++y) {
+        for (int x = first.x0; x < std::min(first.x0 + top, px.width); ++x) {
           const std::size_t i = std::size_t(y) * px.width + x;
-          if ((!only || (*only)[i]) && sharesCuts(px, i)) top.pixels.push_back(int(i));
+          if ((!only || (*only)[i]) && sharesCuts(px, i)) first.pixels.push_back(int(i));
         }
       }
-      if (!top.pixels.empty()) todo.push_back(std::move(top));
+      if (!first.pixels.empty()) todo.push_back(std::move(first));
       while (!todo.empty()) {
         Group group = std::move(todo.back());
         todo.pop_back();
@@ -101,11 +121,34 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
         const bool cone = shadingRegion(px, group.pixels, g);
         // Normals over 90° apart leave no cosine bound: split without trying.
         const bool tried = cone && g.cosSpread >= 0.0f;
+        if (group.size > tileSize) {  // a seed for the quarters
+          if (tried) {
+            auto next = std::make_shared<CutSeed>();
+            const RegionCut r = cutRegion(g, rule, false, unused, group.seed.get(), next.get());
+            part.bounds += r.bounds;
+            // A full cut is a start too: a quarter whose cut then fills up starts over below.
+            quarters(group, todo, next);
+            continue;
+          }
+          Group a{group.x0, group.y0, group.size, {}, group.seed}, b = a;
+          if (splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) {
+            todo.push_back(std::move(a));
+            todo.push_back(std::move(b));
+          } else {
+            quarters(group, todo, group.seed);
+          }
+          continue;
+        }
         RegionCut result;
         const std::size_t entry = part.entries.size();
         if (tried) {
-          result = cutRegion(g, rule, group.size <= fine, part.entries);
+          result = cutRegion(g, rule, group.size <= fine, part.entries, group.seed.get());
           part.bounds += result.bounds;
+          if (result.perPixel && group.seed) {  // the seed's cut was too fine here: start over
+            group.seed = nullptr;
+            result = cutRegion(g, rule, group.size <= fine, part.entries);
+            part.bounds += result.bounds;
+          }
         }
         if (tried && !result.perPixel) {
           for (const int i : group.pixels)
@@ -115,7 +158,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
           continue;
         }
         part.entries.resize(entry);
-        Group a{group.x0, group.y0, group.size, {}}, b = a;
+        Group a{group.x0, group.y0, group.size, {}, group.seed}, b = a;
         if ((!cone || g.cosSpread < kSurfaceSpread) &&
             splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) {
           ++part.splits;
@@ -128,17 +171,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
         // over the whole cut); under the node rule the culprit is mostly a light near one
         // corner, which a quarter leaves out.
         if (cone && group.size > fine && (!rule.total || result.shortfall < kSplitShortfall)) {
-          const int h = group.size / 2;
-          Group quarter[4];
-          for (int q = 0; q < 4; ++q)
-            quarter[q] = {group.x0 + (q & 1) * h, group.y0 + (q >> 1) * h, h, {}};
-          for (const int i : group.pixels) {
-            const int x = i % px.width, y = i / px.width;
-            quarter[(x >= group.x0 + h ? 1 : 0) + (y >= group.y0 + h ? 2 : 0)].pixels.push_back(i);
-          }
-          for (Group& q : quarter) {
-            if (!q.pixels.empty()) todo.push_back(std::move(q));
-          }
+          quarters(group, todo, group.seed);
           continue;
         }
         ++part.perPixel;
@@ -164,7 +197,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     std::uint32_t& c = out.cutOfPixel[i];
     if (c == kNoSharedCut) continue;
     const int x = int(i % std::size_t(px.width)), y = int(i / std::size_t(px.width));
-    c += firstCut[std::size_t(partOf((y / tileSize) * coarseX + x / tileSize))];
+    c += firstCut[std::size_t(partOf((y / top) * coarseX + x / top))];
   }
   out.texels.assign((2 * cuts + entryTexels) * 4, 0u);
   std::size_t next = 2 * cuts;
@@ -182,7 +215,8 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
 }
 
 RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, bool finest,
-                                std::vector<std::uint32_t>& entries) const {
+                                std::vector<std::uint32_t>& entries, const CutSeed* seed,
+                                CutSeed* next) const {
   RegionCut result;
   const glm::vec3 centre = 0.5f * (g.pMin + g.pMax);
   const float slackRate = float(colour_.slack), slackFloor = float(colour_.slackFloor);
@@ -297,14 +331,30 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
     items.push_back(it);
     const int k = int(items.size()) - 1;
     if (it.measure > 0.0f) {
+      if (!it.leaf) {  // likely refined later: fetch its children's nodes meanwhile
+        const char* c = reinterpret_cast<const char*>(&node(it.tree, 2 * it.index + 1));
+        for (int b = 0; b < int(2 * sizeof(Node)); b += 64) __builtin_prefetch(c + b);
+      }
       heap.push_back(entry(it.measure, k));
       cut_heap::pushHeap(heap);
     } else {
       settled.push_back(k);
     }
   };
-  for (int t = 0; t < 3; ++t) {
-    if (leaves_[t] > 0) add(makeItem(t, 0, nullptr));
+  // The far field the cut starts from (a seed's, about this group's centre), and the bound of
+  // the entries folded into it.
+  FarField far(centre);
+  glm::vec3 farCheck(0.0f);
+  if (seed) {
+    far = seed->far.movedTo(centre);
+    farCheck = seed->farCheck;
+    sum += far.irradianceAtCentre(g.axis) / kPi;
+    if (rule.total) errorSum += farCheck;
+    for (const CutSeed::NodeRef& n : seed->nodes) add(makeItem(n.tree, n.index, nullptr));
+  } else {
+    for (int t = 0; t < 3; ++t) {
+      if (leaves_[t] > 0) add(makeItem(t, 0, nullptr));
+    }
   }
   while (!heap.empty()) {
     const float top = layout::floatOf(std::uint32_t(heap.front() >> 32));
@@ -319,7 +369,7 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
              (have <= target(margin) || (rule.total && have <= kAbsoluteFloor));
     };
     if (holds(kMargin)) break;
-    const int size = int(heap.size() + settled.size());
+    const int size = int(heap.size() + settled.size()) + far.count();
     if (size + 1 > rule.maxCut || (!rule.total && 2 * size > rule.maxCut &&
                                    top > kHopeless * kMargin * rule.error * maxOf(sum))) {
       // At the finest size, a full cut that meets the rule at the centre without the margin
@@ -331,7 +381,8 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
       result.perPixel = true;  // the tile's cut is full: its pixels cut for themselves
       const float want = target(kMargin);
       result.shortfall = want > 0.0f ? have / want : std::numeric_limits<float>::infinity();
-      return result;
+      if (!next) return result;
+      break;  // still a seed
     }
     cut_heap::popHeap(heap);
     const Item parent = items[std::size_t(heap.back() & 0xffffffffu)];
@@ -387,12 +438,14 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
   }
   thread_local std::vector<bool> folded;
   folded.assign(items.size(), false);
+  result.check = rule.total ? result.check + farCheck : glm::max(result.check, farCheck);
   if (rule.total) {
     std::sort(foldable.begin(), foldable.end());
     for (const Foldable& f : foldable) {
       const glm::vec3 b = result.check + f.t;
       if (maxOf(b) > kFoldMargin * rule.error * maxOf(sum - b)) break;
       result.check = b;
+      farCheck += f.t + items[std::size_t(f.item)].error;
       folded[std::size_t(f.item)] = true;
     }
   } else {
@@ -400,12 +453,13 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
       const glm::vec3 b = items[std::size_t(f.item)].error + f.t;
       if (maxOf(b) > kMargin * rule.error * maxOf(sum)) continue;
       result.check = glm::max(result.check, b);
+      farCheck = glm::max(farCheck, b);
       folded[std::size_t(f.item)] = true;
     }
   }
 
   // The cut's entries: the far field first, then tree by tree (the bounds are set above).
-  FarField far(centre);
+  if (next) next->nodes.clear();
   thread_local std::vector<std::uint32_t> byTree[3];
   for (auto& e : byTree) e.clear();
   for (const int k : settled) {
@@ -421,6 +475,10 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
       } else {
         far.addPoint(l.repPoint, l.repInvRange2, it.intensity);
       }
+      continue;
+    }
+    if (next) {
+      next->nodes.push_back({it.tree, it.index});
       continue;
     }
     // The representative itself: direction or position, and 1/range²; a spot's cone; the
@@ -439,6 +497,11 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
       e.push_back(layout::wordOf(w));
   }
   result.folded = far.count();
+  if (next) {
+    next->far = far;
+    next->farCheck = farCheck;
+    return result;
+  }
   if (!far.empty()) far.write(entries);
   for (int t = 0; t < 3; ++t) {
     result.counts[t] = int(byTree[t].size() / (t == 2 ? 12 : 8));

@@ -263,6 +263,94 @@ TEST(FarField, SpotWithItsConeIsItsFirstOrderExpansion) {
   }
 }
 
+// A far field moved to another centre (a seed's, for a smaller group) is the same linear
+// function of the pixel.
+TEST(FarField, MovedToAnotherCentreIsTheSameFunction) {
+  FarField far(glm::vec3(0.5f, 0.0f, -0.25f));
+  far.addPoint({0.3f, 2.0f, 0.1f}, 0.05f, {1.0f, 0.5f, 0.25f});
+  far.addPoint({-1.5f, 1.0f, 2.0f}, 0.0f, {0.2f, 0.4f, 0.8f});
+  far.addDirectional(glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f)), {0.3f, 0.3f, 0.3f});
+  const glm::vec3 centre(0.7f, 0.1f, -0.1f);
+  const FarField moved = far.movedTo(centre);
+  EXPECT_EQ(moved.count(), 3);
+  std::vector<std::uint32_t> before, after;
+  far.write(before);
+  moved.write(after);
+  const glm::dvec3 n = glm::normalize(glm::dvec3(0.1, 1.0, 0.05));
+  for (const glm::dvec3 x : {glm::dvec3(centre), glm::dvec3(0.5, 0.0, -0.25),
+                             glm::dvec3(0.9, -0.1, 0.0), glm::dvec3(0.6, 0.05, -0.3)}) {
+    const glm::dvec3 a = farFieldIrradiance(before.data(), x, n);
+    const glm::dvec3 b = farFieldIrradiance(after.data(), x, n);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(a[ch], b[ch], 1e-5 * std::abs(a[ch]));
+  }
+  const glm::vec3 atCentre = moved.irradianceAtCentre(glm::vec3(n));
+  const glm::dvec3 stored = farFieldIrradiance(after.data(), glm::dvec3(centre), n);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(atCentre[ch], stored[ch], 1e-5 * stored[ch]);
+}
+
+// The covered pixels of the square of `size` at (x0, y0).
+std::vector<int> squareOf(const SyntheticGBuffer& g, int x0, int y0, int size) {
+  std::vector<int> pixels;
+  for (int y = y0; y < y0 + size; ++y) {
+    for (int x = x0; x < x0 + size; ++x) {
+      if (g.normal[(std::size_t(y) * kSize + x) * 4 + 3] != 0.0f) pixels.push_back(y * kSize + x);
+    }
+  }
+  return pixels;
+}
+
+// One group's cut as a frame's only shared cut.
+TileCuts asTileCuts(const RegionCut& r, const std::vector<std::uint32_t>& entries,
+                    const std::vector<int>& pixels) {
+  TileCuts t;
+  t.cutOfPixel.assign(std::size_t(kSize * kSize), kNoSharedCut);
+  for (const int i : pixels) t.cutOfPixel[std::size_t(i)] = 0;
+  t.sharedCuts = 1;
+  t.texels.assign(8, 0u);
+  r.writeHeader(2, t.texels.data());
+  t.texels.insert(t.texels.end(), entries.begin(), entries.end());
+  return t;
+}
+
+// A 16×16 square's cut started from the cut of the 32×32 square that holds it (CutSeed)
+// costs a fraction of the bounds of one from the roots, and stays within its bounds at
+// every pixel. A full cut still makes a seed: the cut found so far.
+TEST(TileCuts, ACutStartedFromItsSquaresSeedHoldsForLess) {
+  const SyntheticGBuffer g;
+  const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 1500, 7);
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  const std::vector<int> small = squareOf(g, 0, 0, 16);
+  ShadingRegion outer, inner;
+  ASSERT_TRUE(shadingRegion(g.pixels(), squareOf(g, 0, 0, 32), outer));
+  ASSERT_TRUE(shadingRegion(g.pixels(), small, inner));
+  const CutRule rule{0.02f, true, 8000};
+  CutSeed seed;
+  std::vector<std::uint32_t> unused, fresh, seeded;
+  EXPECT_FALSE(cutter.cutRegion(outer, rule, false, unused, nullptr, &seed).perPixel);
+  EXPECT_TRUE(unused.empty());
+  EXPECT_GT(seed.far.count(), 0);
+  const RegionCut fromRoots = cutter.cutRegion(inner, rule, false, fresh);
+  const RegionCut fromSeed = cutter.cutRegion(inner, rule, false, seeded, &seed);
+  ASSERT_FALSE(fromSeed.perPixel);
+  EXPECT_LT(2 * fromSeed.bounds, fromRoots.bounds);
+  const Checked c = checkCuts(g, lights, asTileCuts(fromSeed, seeded, small));
+  EXPECT_EQ(c.sharedPixels, 256);
+  EXPECT_EQ(c.failing, 0);
+  EXPECT_LE(c.worstOverBound, 1.0001);
+
+  CutSeed fullSeed;
+  EXPECT_TRUE(cutter.cutRegion(outer, CutRule{0.02f, true, 40}, false, unused, nullptr, &fullSeed)
+                  .perPixel);
+  std::vector<std::uint32_t> fromFull;
+  const RegionCut fromFullSeed = cutter.cutRegion(inner, rule, false, fromFull, &fullSeed);
+  ASSERT_FALSE(fromFullSeed.perPixel);
+  EXPECT_LT(fromFullSeed.bounds, fromRoots.bounds);
+  const Checked d = checkCuts(g, lights, asTileCuts(fromFullSeed, fromFull, small));
+  EXPECT_EQ(d.sharedPixels, 256);
+  EXPECT_EQ(d.failing, 0);
+  EXPECT_LE(d.worstOverBound, 1.0001);
+}
+
 // The cut's heap keeps std::push_heap's and std::pop_heap's layout, so cuts list their
 // entries in the same order (and images stay bit for bit) whichever is used.
 TEST(CutHeap, LaysKeysOutAsTheStandardHeapDoes) {
