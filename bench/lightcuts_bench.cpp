@@ -46,17 +46,13 @@ void renderTime(benchmark::State& state, Method method) {
   Renderer renderer(scene, scene.lights, w, h, method);
   const View view = makeView(scene.cameras[0], w, h);
   FrameSettings settings;  // lightcuts defaults: ε = 0.02, node rule
-  FrameStats stats, timed;
-  // Warm-up (shader compile), with the per-pixel cut statistics; the timed frames, as a
-  // render without --stats, leave them out.
-  renderer.render(view, settings, &stats);
-  settings.readCutStats = false;
-  if (method != Method::Reference) renderer.render(view, settings, &timed);  // their shaders
+  FrameStats stats;
+  renderer.render(view, settings, &stats);  // warm-up: shader compile
   std::vector<double> times;
   for (auto _ : state) {
-    renderer.render(view, settings, &timed);
-    state.SetIterationTime(timed.renderMs / 1000.0);
-    times.push_back(timed.renderMs);
+    renderer.render(view, settings, &stats);
+    state.SetIterationTime(stats.renderMs / 1000.0);
+    times.push_back(stats.renderMs);
   }
   std::sort(times.begin(), times.end());
   gMilliseconds[{method, lights}] = times[times.size() / 2];

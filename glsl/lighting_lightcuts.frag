@@ -47,11 +47,9 @@ uniform float uInfluence; // DISTANCE: radius of influence per half diagonal
 uniform vec2 uColourSlack;  // η and ζ of the node colour coding
 
 layout(location = 0) out vec4 oRadiance;
-#ifdef CUT_STATS
 // x: cut size, y: light evaluations, z: node bound evaluations, w: 1, or 2 where the cut hit
 // uMaxCut, 3 where the pixel took its group's shared cut (0 stays on background pixels).
 layout(location = 1) out vec4 oCutStats;
-#endif
 
 const float kUnbounded = 3.0e38;
 const float kAbsoluteFloor = 1e-6;
@@ -442,9 +440,7 @@ void main() {
 #if defined(SHARED_PASS)
   if (normal.w == 0.0) {  // background: done (written, so that OWN_PASS leaves it)
     oRadiance = vec4(0.0);
-#ifdef CUT_STATS
     oCutStats = vec4(0.0);
-#endif
     return;
   }
 #elif !defined(OWN_PASS)
@@ -477,8 +473,6 @@ void main() {
 #endif
 #endif
   oRadiance = vec4(estimateSum, 0.0);
-#ifdef CUT_STATS
   oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations),
                    tookTileCut ? 3.0 : atMax ? 2.0 : 1.0);
-#endif
 }

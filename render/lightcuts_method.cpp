@@ -70,7 +70,7 @@ const gl::Program& LightcutsMethod::program(const std::vector<std::string>& defi
 }
 
 void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
-                            const LightcutsSettings& settings, bool cutStats) const {
+                            const LightcutsSettings& settings) const {
   const int maxCut = std::clamp(settings.maxCut, 1, kMaxCutLimit);
   std::vector<std::string> defines;
   if (distance_) defines.push_back("DISTANCE");
@@ -86,13 +86,8 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   }
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glDrawBuffers(cutStats ? 2 : 1, buffers);
-  if (cutStats) {
-    const float zero[4] = {0, 0, 0, 0};
-    glClearBufferfv(GL_COLOR, 1, zero);
-    defines.push_back("CUT_STATS");
-  }
+  const float zero[4] = {0, 0, 0, 0};
+  glClearBufferfv(GL_COLOR, 1, zero);
   // One lighting pass with `extra` defines.
   auto pass = [&](std::initializer_list<const char*> extra) {
     std::vector<std::string> all = defines;

@@ -68,12 +68,10 @@ class LightcutsMethod {
 
   // Adds the lights' contribution to the radiance target of `gbuffer` and writes the cut
   // statistics target.
-  // `cutStats`: write the per-pixel cut statistics that cutStats() reads (they cost the
-  // pass about 5%).
   void light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
-             const LightcutsSettings& settings, bool cutStats) const;
+             const LightcutsSettings& settings) const;
 
-  // Reads back the statistics of the last light() call, which must have written them.
+  // Reads back the statistics of the last light() call.
   CutStats cutStats() const;
   // Milliseconds the last light() call spent finding shared cuts on the CPU and uploading
   // them, after the G-buffer was read back (0 without shared cuts).

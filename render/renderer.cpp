@@ -160,7 +160,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   glBindVertexArray(emptyVao_.id());
   int passes = 1;
   if (lightcuts_) {
-    lightcuts_->light(gpu_, gbuffer_, view, settings.lightcuts, settings.readCutStats);
+    lightcuts_->light(gpu_, gbuffer_, view, settings.lightcuts);
   } else {
     passes = lightReference(view, settings);
   }

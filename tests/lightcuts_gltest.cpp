@@ -210,26 +210,6 @@ TEST_F(LightcutsTest, KeptCutsHoldTheTotalRuleFrameByFrame) {
   for (int i = 1; i < 8; ++i) EXPECT_GT(out.cutsKept[std::size_t(i)], out.cutsMade[std::size_t(i)]);
 }
 
-// The per-pixel cut statistics are written only when they are read (they cost the lighting
-// pass time): the image is the same bit for bit either way, shared cuts and cuts of their
-// own (the specular room's pixels) alike.
-TEST_F(LightcutsTest, CutStatisticsDoNotChangeTheImage) {
-  for (const Scene* room : {room_, specularRoom_}) {
-    Scene scene = *room;
-    scene.lights = layoutLights(LightLayout::Mixed, 2000, 7);
-    Renderer renderer(scene, scene.lights, kWidth, kHeight, Method::Lightcuts);
-    const View view = makeView(scene.cameras[0], kWidth, kHeight);
-    FrameSettings settings;
-    FrameStats stats;
-    const Image with = renderer.render(view, settings, &stats);
-    EXPECT_GT(stats.cuts.pixelsSharedCut, 0);
-    EXPECT_LT(stats.cuts.pixelsSharedCut, stats.cuts.pixels);  // some cut for themselves
-    settings.readCutStats = false;
-    const Image without = renderer.render(view, settings, &stats);
-    EXPECT_EQ(with.rgba, without.rgba);
-  }
-}
-
 TEST_F(LightcutsTest, DistanceCriterionErrorsAreMeasured) {
   // Nor does the cheaper criterion.
   for (const Errors& e :
