@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bake/light_tree_layout.h"
+#include "render/cpu_clones.h"
 #include "scene/shading_model.h"
 
 namespace manylight {
@@ -19,6 +20,7 @@ double smoothstepSlope(double t) { return 6.0 * t * (1.0 - t); }
 
 }  // namespace
 
+MANYLIGHT_AVX2_CLONES
 ConeVariation coneVariation(float scale, float offset, float outerCos, glm::vec2 cosines) {
   ConeVariation v;
   v.scale = scale;
@@ -36,6 +38,7 @@ ConeVariation coneVariation(float scale, float offset, float outerCos, glm::vec2
   return v;
 }
 
+MANYLIGHT_AVX2_CLONES
 double linearisationBound(double rMin2, double invRange2, double h2, const ConeVariation* cone) {
   const double a = invRange2;
   double secondDerivative = 6.0 / (rMin2 * rMin2) + 15.4 * a / rMin2 + 32.0 * a * a;
@@ -61,6 +64,7 @@ void FarField::addSpot(glm::vec3 position, float invRange2, const Cone& cone, gl
   add(position, invRange2, &cone, intensity);
 }
 
+MANYLIGHT_AVX2_CLONES
 void FarField::add(glm::vec3 position, float invRange2, const Cone* cone, glm::vec3 intensity) {
   // f(c) = W(s) v / r³ and Df(c) = −(2 W'(s) v vᵀ + W (I − 3 v vᵀ / r²)) / r³, v = p − c,
   // s = r² (far_field.h); W = (1 − x²)² with x = a·s, W' = −4a·x(1 − x²), both 0 for x ≥ 1.

@@ -7,10 +7,12 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
+#include "render/cpu_clones.h"
+
 namespace manylight::region_bounds {
 
 // The range window clamp(1 − (d²/range²)², 0, 1)² (glsl/shading.glsl).
-inline float window(float d2, float invRange2) {
+MANYLIGHT_INLINE inline float window(float d2, float invRange2) {
   const float x = d2 * invRange2;
   const float w = std::clamp(1.0f - x * x, 0.0f, 1.0f);
   return w * w;
@@ -18,7 +20,7 @@ inline float window(float d2, float invRange2) {
 
 // cos(max(θ − γ, 0)) for θ = acos(c), γ the spread (cos cg, sin sg): the largest cosine to
 // any normal of the tile when c bounds the cosine to their mean direction.
-inline float widenUp(float c, float cg, float sg) {
+MANYLIGHT_INLINE inline float widenUp(float c, float cg, float sg) {
   if (cg <= 0.0f) return 1.0f;  // γ ≥ π/2: some normal may face the light head on
   c = std::clamp(c, 0.0f, 1.0f);
   const float s = std::sqrt(1.0f - c * c);
@@ -26,14 +28,14 @@ inline float widenUp(float c, float cg, float sg) {
 }
 
 // cos(min(θ + γ, π/2))⁺ for θ = acos(c): the smallest cosine to any normal of the tile.
-inline float widenDown(float c, float cg, float sg) {
+MANYLIGHT_INLINE inline float widenDown(float c, float cg, float sg) {
   if (cg <= 0.0f) return 0.0f;
   c = std::clamp(c, 0.0f, 1.0f);
   return std::max(c * cg - std::sqrt(1.0f - c * c) * sg, 0.0f);
 }
 
 // The nearest and farthest squared lengths of the vectors in the box [dMin, dMax].
-inline glm::vec2 lengths2(glm::vec3 dMin, glm::vec3 dMax) {
+MANYLIGHT_INLINE inline glm::vec2 lengths2(glm::vec3 dMin, glm::vec3 dMax) {
   const glm::vec3 nearest = glm::clamp(glm::vec3(0.0f), dMin, dMax);
   const glm::vec3 farthest = glm::max(glm::abs(dMin), glm::abs(dMax));
   return {glm::dot(nearest, nearest), glm::dot(farthest, farthest)};
@@ -43,20 +45,20 @@ inline glm::vec2 lengths2(glm::vec3 dMin, glm::vec3 dMax) {
 // vectors from a shading point of the region to a light of the node (directional trees:
 // the node's directions): the largest and smallest cosine to `u` over the box (`dist`: the
 // nearest or farthest distance), and over its bounding sphere (upper, lower).
-inline float cosineUpper(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax, float dist) {
+MANYLIGHT_INLINE inline float cosineUpper(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax, float dist) {
   const glm::vec3 m = glm::max(u * dMin, u * dMax);
   const float num = m.x + m.y + m.z;
   if (num <= 0.0f) return 0.0f;
   return dist > 0.0f ? std::min(num / dist, 1.0f) : 1.0f;
 }
 
-inline float cosineLower(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax, float dist) {
+MANYLIGHT_INLINE inline float cosineLower(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax, float dist) {
   const glm::vec3 m = glm::min(u * dMin, u * dMax);
   const float num = m.x + m.y + m.z;
   return num > 0.0f ? std::min(num / dist, 1.0f) : 0.0f;
 }
 
-inline glm::vec2 sphereCosines(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax) {
+MANYLIGHT_INLINE inline glm::vec2 sphereCosines(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax) {
   const glm::vec3 c = 0.5f * (dMin + dMax);
   const float r2 = 0.25f * glm::dot(dMax - dMin, dMax - dMin);
   const float d2 = glm::dot(c, c);
@@ -72,8 +74,8 @@ inline glm::vec2 sphereCosines(glm::vec3 u, glm::vec3 dMin, glm::vec3 dMax) {
 
 // Whether some light of a spot node may shine on some point of the region: as spotMayReach
 // in the shader, with the region's bounding sphere added to the node's.
-inline bool spotMayReach(glm::vec3 boxMin, glm::vec3 boxMax, glm::vec3 axis, float cosT, float sinT,
-                         glm::vec3 pMin, glm::vec3 pMax) {
+MANYLIGHT_INLINE inline bool spotMayReach(glm::vec3 boxMin, glm::vec3 boxMax, glm::vec3 axis,
+                                          float cosT, float sinT, glm::vec3 pMin, glm::vec3 pMax) {
   const glm::vec3 c = 0.5f * (boxMin + boxMax);
   const float r = 0.5f * glm::length(boxMax - boxMin) + 0.5f * glm::length(pMax - pMin);
   const glm::vec3 toP = 0.5f * (pMin + pMax) - c;
@@ -90,7 +92,8 @@ inline bool spotMayReach(glm::vec3 boxMin, glm::vec3 boxMax, glm::vec3 axis, flo
 // The lowest and highest cosine between `axis` and a direction from `position` to a point
 // of the box [pMin, pMax] (its bounding sphere): cos(ψ + α) and cos(max(ψ − α, 0)), ψ the
 // angle to the sphere's centre and α its angular radius; (−1, 1) when `position` is inside.
-inline glm::vec2 axisCosines(glm::vec3 axis, glm::vec3 position, glm::vec3 pMin, glm::vec3 pMax) {
+MANYLIGHT_INLINE inline glm::vec2 axisCosines(glm::vec3 axis, glm::vec3 position, glm::vec3 pMin,
+                                              glm::vec3 pMax) {
   const glm::vec3 w = 0.5f * (pMin + pMax) - position;
   const float d = glm::length(w);
   const float r = 0.5f * glm::length(pMax - pMin);

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "bake/light_tree_layout.h"
+#include "render/cpu_clones.h"
 #include "render/cut_heap.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
@@ -40,19 +41,6 @@ constexpr float kHopeless = 4.0f;
 float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
 }  // namespace
-
-// On x86-64 CPUs with AVX2 the cut loop runs in a copy compiled for them (GCC's target_clones
-// picks it when the program loads), about 11% faster: 65,536 mixed lights at 640x480, 160
-// against 142 ms (best of 5 repeats, 4 frames). Its results are the same bit for bit: AVX2
-// brings no fused multiply-add, and nothing here reassociates. The loop's lambdas are inlined
-// so that each copy has its own.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define MANYLIGHT_CUT_CLONES __attribute__((target_clones("avx2", "default")))
-#define MANYLIGHT_INLINE __attribute__((always_inline))
-#else
-#define MANYLIGHT_CUT_CLONES
-#define MANYLIGHT_INLINE
-#endif
 
 std::size_t RegionCut::entryTexels() const {
   return std::size_t(2 * (counts[0] + counts[1]) + 3 * counts[2] +
@@ -227,7 +215,9 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   return out;
 }
 
-MANYLIGHT_CUT_CLONES
+// The cut loop runs in a copy for AVX2 where the CPU has it (render/cpu_clones.h): 65,536
+// mixed lights at 640x480, 160 against 142 ms.
+MANYLIGHT_AVX2_CLONES
 RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, bool finest,
                                 std::vector<std::uint32_t>& entries, const CutSeed* seed,
                                 CutSeed* next) const {
