@@ -4,14 +4,12 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <memory>
 
 #include "bake/light_tree_layout.h"
 #include "render/cpu_clones.h"
 #include "render/cut_heap.h"
 #include "render/far_field.h"
 #include "render/region_bounds.h"
-#include "render/threads.h"
 
 namespace manylight {
 
@@ -26,9 +24,6 @@ constexpr float kAbsoluteFloor = 1e-6f;        // glsl/lighting_lightcuts.frag
 // times this margin, so that most pixels, whose estimates differ from the centre's, pass
 // their own check.
 constexpr float kMargin = 0.5f;
-// Under the total rule, a square whose cut filled up is split into quarters only if the
-// cut's summed bound was within this factor of the rule's target.
-constexpr float kSplitShortfall = 8.0f;
 // Under the total rule, entries fold into the far field while the summed bound stays within
 // this share of the rule's target (the cut itself stopped at kMargin).
 constexpr float kFoldMargin = 0.75f;
@@ -41,179 +36,6 @@ constexpr float kHopeless = 4.0f;
 float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
 }  // namespace
-
-std::size_t RegionCut::entryTexels() const {
-  return std::size_t(2 * (counts[0] + counts[1]) + 3 * counts[2] +
-                     (folded > 0 ? kFarFieldTexels : 0));
-}
-
-void RegionCut::writeHeader(std::uint32_t firstEntryTexel, std::uint32_t* words) const {
-  const std::uint32_t header[8] = {firstEntryTexel,          std::uint32_t(counts[0]),
-                                   std::uint32_t(counts[1]), std::uint32_t(counts[2]),
-                                   layout::wordOf(check.x),  layout::wordOf(check.y),
-                                   layout::wordOf(check.z),  std::uint32_t(folded)};
-  std::copy_n(header, 8, words);
-}
-
-TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& rule, int threads,
-                         const std::vector<std::uint8_t>* only) const {
-  TileCuts out;
-  const int fine = std::min(kFinestTile, tileSize);
-  out.cutOfPixel.assign(std::size_t(px.width) * px.height, kNoSharedCut);
-  // Squares of `top` pixels find seed cuts for their quarters, down to squares of tileSize.
-  const int top = tileSize << kSeedLevels;
-  const int coarseX = (px.width + top - 1) / top;
-  const int coarse = coarseX * ((px.height + top - 1) / top);
-  threads = std::clamp(threads, 1, std::max(coarse, 1));
-
-  // Per thread: its cuts (numbered in order; cutOfPixel holds these numbers until the merge)
-  // and their entries.
-  struct Part {
-    std::vector<RegionCut> cuts;
-    std::vector<std::size_t> entry;  // each cut's first word in `entries`
-    std::vector<std::uint32_t> entries;
-    long long bounds = 0;  // split groups' too
-    int perPixel = 0, splits = 0;
-  };
-  std::vector<Part> parts(static_cast<std::size_t>(threads));
-
-  // A group of a square's covered pixels (indices y · width + x), and the seed its cut
-  // starts from.
-  struct Group {
-    int x0, y0, size;
-    std::vector<int> pixels;
-    std::shared_ptr<const CutSeed> seed;
-  };
-  auto quarters = [&](Group& group, std::vector<Group>& todo,
-                      const std::shared_ptr<const CutSeed>& seed) {
-    const int h = group.size / 2;
-    Group quarter[4];
-    for (int q = 0; q < 4; ++q)
-      quarter[q] = {group.x0 + (q & 1) * h, group.y0 + (q >> 1) * h, h, {}, seed};
-    for (const int i : group.pixels) {
-      const int x = i % px.width, y = i / px.width;
-      quarter[(x >= group.x0 + h ? 1 : 0) + (y >= group.y0 + h ? 2 : 0)].pixels.push_back(i);
-    }
-    for (Group& q : quarter) {
-      if (!q.pixels.empty()) todo.push_back(std::move(q));
-    }
-  };
-  // Squares are dealt out round robin: square t is part partOf(t)'s. The merge below
-  // renumbers each pixel's cut by its square's part.
-  auto partOf = [&](int t) { return t % threads; };
-  auto work = [&](int index) {
-    Part& part = parts[std::size_t(index)];
-    std::vector<Group> todo;
-    std::vector<std::uint32_t> unused;
-    for (int t = 0; t < coarse; ++t) {
-      if (partOf(t) != index) continue;
-      Group first{(t % coarseX) * top, (t / coarseX) * top, top, {}, nullptr};
-      for (int y = first.y0; y < std::min(first.y0 + top, px.height); ++y) {
-        for (int x = first.x0; x < std::min(first.x0 + top, px.width); ++x) {
-          const std::size_t i = std::size_t(y) * px.width + x;
-          if ((!only || (*only)[i]) && sharesCuts(px, i)) first.pixels.push_back(int(i));
-        }
-      }
-      if (!first.pixels.empty()) todo.push_back(std::move(first));
-      while (!todo.empty()) {
-        Group group = std::move(todo.back());
-        todo.pop_back();
-        ShadingRegion g;
-        const bool cone = shadingRegion(px, group.pixels, g);
-        // Normals over 90° apart leave no cosine bound: split without trying.
-        const bool tried = cone && g.cosSpread >= 0.0f;
-        if (group.size > tileSize) {  // a seed for the quarters
-          if (tried) {
-            auto next = std::make_shared<CutSeed>();
-            const RegionCut r = cutRegion(g, rule, false, unused, group.seed.get(), next.get());
-            part.bounds += r.bounds;
-            // A full cut is a start too: a quarter whose cut then fills up starts over below.
-            quarters(group, todo, next);
-            continue;
-          }
-          Group a{group.x0, group.y0, group.size, {}, group.seed}, b = a;
-          if (splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) {
-            todo.push_back(std::move(a));
-            todo.push_back(std::move(b));
-          } else {
-            quarters(group, todo, group.seed);
-          }
-          continue;
-        }
-        RegionCut result;
-        const std::size_t entry = part.entries.size();
-        if (tried) {
-          result = cutRegion(g, rule, group.size <= fine, part.entries, group.seed.get());
-          part.bounds += result.bounds;
-          if (result.perPixel && group.seed) {  // the seed's cut was too fine here: start over
-            group.seed = nullptr;
-            result = cutRegion(g, rule, group.size <= fine, part.entries);
-            part.bounds += result.bounds;
-          }
-        }
-        if (tried && !result.perPixel) {
-          for (const int i : group.pixels)
-            out.cutOfPixel[std::size_t(i)] = std::uint32_t(part.cuts.size());
-          part.cuts.push_back(result);
-          part.entry.push_back(entry);
-          continue;
-        }
-        part.entries.resize(entry);
-        Group a{group.x0, group.y0, group.size, {}, group.seed}, b = a;
-        if ((!cone || g.cosSpread < kSurfaceSpread) &&
-            splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) {
-          ++part.splits;
-          todo.push_back(std::move(a));
-          todo.push_back(std::move(b));
-          continue;
-        }
-        // Smaller squares have tighter bounds: try the quarters. Under the total rule, a cut
-        // that filled up far from its target fills up in the quarters too (its bounds add up
-        // over the whole cut); under the node rule the culprit is mostly a light near one
-        // corner, which a quarter leaves out.
-        if (cone && group.size > fine && (!rule.total || result.shortfall < kSplitShortfall)) {
-          quarters(group, todo, group.seed);
-          continue;
-        }
-        ++part.perPixel;
-      }
-    }
-  };
-  onThreads(threads, work);
-
-  // Number the cuts part after part, and lay out headers, then entries.
-  std::vector<std::uint32_t> firstCut(parts.size(), 0);
-  std::size_t cuts = 0, entryTexels = 0;
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    firstCut[k] = std::uint32_t(cuts);
-    cuts += parts[k].cuts.size();
-    entryTexels += parts[k].entries.size() / 4;
-    out.boundEvaluations += parts[k].bounds;
-    out.perPixelGroups += parts[k].perPixel;
-    out.surfaceSplits += parts[k].splits;
-  }
-  out.sharedCuts = int(cuts);
-  out.made = out.sharedCuts + out.perPixelGroups;
-  for (std::size_t i = 0; i < out.cutOfPixel.size(); ++i) {
-    std::uint32_t& c = out.cutOfPixel[i];
-    if (c == kNoSharedCut) continue;
-    const int x = int(i % std::size_t(px.width)), y = int(i / std::size_t(px.width));
-    c += firstCut[std::size_t(partOf((y / top) * coarseX + x / top))];
-  }
-  out.texels.assign((2 * cuts + entryTexels) * 4, 0u);
-  std::size_t next = 2 * cuts;
-  std::uint32_t* head = out.texels.data();
-  for (const Part& part : parts) {
-    for (std::size_t k = 0; k < part.cuts.size(); ++k, head += 8) {
-      const RegionCut& r = part.cuts[k];
-      r.writeHeader(std::uint32_t(next), head);
-      const std::size_t texels = r.entryTexels();
-      std::copy_n(part.entries.data() + part.entry[k], texels * 4, out.texels.data() + next * 4);
-      next += texels;
-    }
-  }
-  return out;
-}
 
 // The cut loop runs in a copy for AVX2 where the CPU has it (render/cpu_clones.h): 65,536
 // mixed lights at 640x480, 160 against 142 ms.
