@@ -433,7 +433,8 @@ bool tileCut() {
 // value that sends them to OWN_PASS, which walks their own cuts (the stencil test drops the
 // rest before the shader runs). The shared pass's shader then holds no walk, and no block of
 // pixels waits on a neighbour's walk: at 65,536 mixed lights and 640x480 (about 700 pixels
-// walking), the lighting went from 86-92 ms in one pass to 78-81 ms in two.
+// walking), the lighting took 79-80 ms in one pass and 67-68 ms in two (each the best of
+// five repeats within a frame).
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 normal = texelFetch(uNormal, px, 0);

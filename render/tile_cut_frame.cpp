@@ -60,7 +60,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     std::vector<int> pixels;
     std::shared_ptr<const CutSeed> seed;
   };
-  auto quarters = [&](Group& group, std::vector<Group>& todo,
+  auto quarters = [&](const Group& group, std::vector<Group>& todo,
                       const std::shared_ptr<const CutSeed>& seed) {
     const int h = group.size / 2;
     Group quarter[4];
@@ -73,6 +73,14 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     for (Group& q : quarter) {
       if (!q.pixels.empty()) todo.push_back(std::move(q));
     }
+  };
+  // Splits `group` into its two surfaces (render/pixel_groups.h), which start from its seed.
+  auto surfaces = [&](const Group& group, const ShadingRegion& g, std::vector<Group>& todo) {
+    Group a{group.x0, group.y0, group.size, {}, group.seed}, b = a;
+    if (!splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) return false;
+    todo.push_back(std::move(a));
+    todo.push_back(std::move(b));
+    return true;
   };
   // Squares are dealt out round robin: square t is part partOf(t)'s. The merge below
   // renumbers each pixel's cut by its square's part.
@@ -107,13 +115,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
             quarters(group, todo, next);
             continue;
           }
-          Group a{group.x0, group.y0, group.size, {}, group.seed}, b = a;
-          if (splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) {
-            todo.push_back(std::move(a));
-            todo.push_back(std::move(b));
-          } else {
-            quarters(group, todo, group.seed);
-          }
+          if (!surfaces(group, g, todo)) quarters(group, todo, group.seed);
           continue;
         }
         RegionCut result;
@@ -135,12 +137,8 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
           continue;
         }
         part.entries.resize(entry);
-        Group a{group.x0, group.y0, group.size, {}, group.seed}, b = a;
-        if ((!cone || g.cosSpread < kSurfaceSpread) &&
-            splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) {
+        if ((!cone || g.cosSpread < kSurfaceSpread) && surfaces(group, g, todo)) {
           ++part.splits;
-          todo.push_back(std::move(a));
-          todo.push_back(std::move(b));
           continue;
         }
         // Smaller squares have tighter bounds: try the quarters. Under the total rule, a cut
