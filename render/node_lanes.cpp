@@ -1,0 +1,74 @@
+#include "render/node_lanes.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/cpu_clones.h"
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define MANYLIGHT_AVX2_LANES 1
+#include <immintrin.h>
+#endif
+
+namespace manylight {
+
+namespace one_lane {
+
+using V = float;
+MANYLIGHT_INLINE inline V splat(float x) { return x; }
+MANYLIGHT_INLINE inline V load(const float* p) { return *p; }
+MANYLIGHT_INLINE inline void store(float* p, V v) { *p = v; }
+MANYLIGHT_INLINE inline V vsqrt(V x) { return std::sqrt(x); }
+MANYLIGHT_INLINE inline V vabs(V x) { return std::abs(x); }
+MANYLIGHT_INLINE inline V vmin(V a, V b) { return std::min(a, b); }
+MANYLIGHT_INLINE inline V vmax(V a, V b) { return std::max(a, b); }
+#include "render/node_lanes_kernel.h"
+
+}  // namespace one_lane
+
+#ifdef MANYLIGHT_AVX2_LANES
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace eight_lanes {
+
+using V = __m256;
+MANYLIGHT_INLINE inline V splat(float x) { return _mm256_set1_ps(x); }
+MANYLIGHT_INLINE inline V load(const float* p) { return _mm256_loadu_ps(p); }
+MANYLIGHT_INLINE inline void store(float* p, V v) { _mm256_storeu_ps(p, v); }
+MANYLIGHT_INLINE inline V vsqrt(V x) { return _mm256_sqrt_ps(x); }
+MANYLIGHT_INLINE inline V vabs(V x) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), x); }
+// MINPS and MAXPS return their second operand when the comparison is false (NaN, equal), as
+// std::min(a, b) = (b < a) ? b : a and std::max(a, b) = (a < b) ? b : a return a.
+MANYLIGHT_INLINE inline V vmin(V a, V b) { return _mm256_min_ps(b, a); }
+MANYLIGHT_INLINE inline V vmax(V a, V b) { return _mm256_max_ps(b, a); }
+#include "render/node_lanes_kernel.h"
+
+void nodeBounds(const RegionTerms& region, const NodeLanes& in, BoundLanes& out) {
+  nodeBoundLanes(region, in, 0, out);
+}
+
+}  // namespace eight_lanes
+#pragma GCC pop_options
+#endif
+
+bool wideNodeBounds() {
+#ifdef MANYLIGHT_AVX2_LANES
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2;
+#else
+  return false;
+#endif
+}
+
+void nodeBounds(const RegionTerms& region, const NodeLanes& in, int count, BoundLanes& out,
+                bool wide) {
+#ifdef MANYLIGHT_AVX2_LANES
+  if (wide && wideNodeBounds()) {
+    eight_lanes::nodeBounds(region, in, out);
+    return;
+  }
+#endif
+  for (int l = 0; l < count; ++l) one_lane::nodeBoundLanes(region, in, l, out);
+}
+
+}  // namespace manylight

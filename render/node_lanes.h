@@ -1,0 +1,50 @@
+#pragma once
+// The CPU cut's node bounds (render/tile_cuts.cpp) for up to kLanes nodes at once: the same
+// arithmetic as region_bounds.h's helpers, written once over a lane type, one float or, on
+// x86-64 CPUs with AVX2 (under GCC), eight in a register. Every lane takes every branch and
+// the results are selected, so the two give the same results bit for bit: the same IEEE
+// operations in the same order (no fused multiply-add, nothing reassociated; min and max
+// keep std::min and std::max's operand order).
+#include <glm/glm.hpp>
+
+#include "render/pixel_groups.h"
+
+namespace manylight {
+
+inline constexpr int kLanes = 8;
+
+// Up to kLanes nodes, one lane each (TileCutter::Node's fields), and for each whether its
+// representative's shading at the region's centre is known (its parent's, the same light).
+struct NodeLanes {
+  float tree[kLanes], leaf[kLanes];
+  float boxMin[3][kLanes], boxMax[3][kLanes], intensity[3][kLanes], axis[3][kLanes];
+  float invRange2[kLanes], w2[kLanes], sinTheta[kLanes];
+  float repPoint[3][kLanes], repAxis[3][kLanes], repInvRange2[kLanes], repCos[kLanes];
+  float knownUnit[kLanes], unit[kLanes];  // 1: `unit` holds it
+};
+
+// What the bounds need of the group of shading points and of the rule.
+struct RegionTerms {
+  ShadingRegion g;
+  glm::vec3 centre;
+  float halfDiagonal;           // 0.5 · |pMax − pMin|
+  float slackRate, slackFloor;  // node colours' decoding slack (NodeColourCoder)
+  bool total;                   // the total rule: lower bounds too
+};
+
+// Per lane: the representative's shading at the centre per unit intensity, and the item's
+// measure (−1: a leaf; +inf: unbounded), error (upper, or upper − lower), estimate and
+// whether it is dark (TileCutter::cutRegion's Item).
+struct BoundLanes {
+  float unit[kLanes], measure[kLanes], dark[kLanes];
+  float error[3][kLanes], estimate[3][kLanes];
+};
+
+// Lanes [0, count) of `out` for the nodes in lanes [0, count) of `in` (count ≤ kLanes); all
+// kLanes lanes of `in` must hold numbers. `wide`: eight lanes at once where the CPU has AVX2,
+// else one at a time (the tests compare the two).
+void nodeBounds(const RegionTerms& region, const NodeLanes& in, int count, BoundLanes& out,
+                bool wide = true);
+bool wideNodeBounds();  // whether `wide` takes eight lanes at once here
+
+}  // namespace manylight

@@ -1,0 +1,161 @@
+// The node bounds of render/node_lanes.h over lanes of type V, included twice by
+// render/node_lanes.cpp: V = float, and V = __m256 under GCC's AVX2 target. It expects V,
+// splat(float) → V, load(const float*) → V, store(float*, V), and vsqrt, vabs, vmin, vmax
+// with std::min and std::max's semantics ((b < a) ? b : a and (a < b) ? b : a). Each step
+// is the one region_bounds.h's helper (or tile_cuts.cpp's) takes, in the same order; the
+// branches of those helpers are taken by every lane and their results selected.
+// No include guard: included once per lane type.
+
+// libstdc++'s std::clamp: (v < lo) ? lo : (hi < v) ? hi : v.
+MANYLIGHT_INLINE inline V clampLanes(V v, float lo, float hi) {
+  return v < lo ? splat(lo) : (hi < v ? splat(hi) : v);
+}
+
+// region_bounds::window.
+MANYLIGHT_INLINE inline V windowLanes(V d2, V invRange2) {
+  const V x = d2 * invRange2;
+  const V w = clampLanes(1.0f - x * x, 0.0f, 1.0f);
+  return w * w;
+}
+
+MANYLIGHT_INLINE inline V maxOfLanes(const V v[3]) { return vmax(v[0], vmax(v[1], v[2])); }
+
+// Lanes [l, l + width of V) of `out`.
+MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLanes& in, int l,
+                                            BoundLanes& out) {
+  constexpr float kPi = 3.14159265358979323846f;
+  constexpr float kMinDistanceSquared = 1e-12f;  // glsl/shading.glsl
+  const ShadingRegion& g = r.g;
+  const V zero = splat(0.0f), one = splat(1.0f);
+  const V tree = load(in.tree + l);
+  const auto directional = tree == 0.0f, spot = tree == 2.0f;
+  const auto leaf = load(in.leaf + l) != 0.0f;
+  V intensity[3], rep[3], repAxis[3];
+  for (int c = 0; c < 3; ++c) {
+    intensity[c] = load(in.intensity[c] + l);
+    rep[c] = load(in.repPoint[c] + l);
+    repAxis[c] = load(in.repAxis[c] + l);
+  }
+
+  // The representative's shading at the centre per unit albedo and intensity (tile_cuts.cpp's
+  // unitEstimate), unless its parent's is known.
+  const V towards = vmax(g.axis.x * rep[0] + g.axis.y * rep[1] + g.axis.z * rep[2], zero);
+  V v[3], dir[3];
+  for (int c = 0; c < 3; ++c) v[c] = rep[c] - r.centre[c];
+  const V d2Rep = vmax(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], splat(kMinDistanceSquared));
+  const V length = vsqrt(d2Rep);
+  for (int c = 0; c < 3; ++c) dir[c] = v[c] / length;
+  V atPoint = vmax(g.axis.x * dir[0] + g.axis.y * dir[1] + g.axis.z * dir[2], zero) *
+              windowLanes(d2Rep, load(in.repInvRange2 + l)) / d2Rep;
+  const V coneCos = repAxis[0] * -dir[0] + repAxis[1] * -dir[1] + repAxis[2] * -dir[2];
+  atPoint = spot && coneCos < load(in.repCos + l) ? zero : atPoint;
+  const V fresh = (directional ? towards : atPoint) / kPi;
+  const V unit = load(in.knownUnit + l) != 0.0f ? load(in.unit + l) : fresh;
+  store(out.unit + l, unit);
+  for (int c = 0; c < 3; ++c) store(out.estimate[c] + l, intensity[c] * unit);
+
+  // The vectors from the region's points to the node's box (directional: its directions).
+  V dMin[3], dMax[3];
+  for (int c = 0; c < 3; ++c) {
+    const V bMin = load(in.boxMin[c] + l), bMax = load(in.boxMax[c] + l);
+    dMin[c] = directional ? bMin : bMin - g.pMax[c];
+    dMax[c] = directional ? bMax : bMax - g.pMin[c];
+  }
+  V nearest[3], farthest[3];
+  for (int c = 0; c < 3; ++c) {
+    nearest[c] = vmin(vmax(zero, dMin[c]), dMax[c]);
+    farthest[c] = vmax(vabs(dMin[c]), vabs(dMax[c]));
+  }
+  const V d2Min = nearest[0] * nearest[0] + nearest[1] * nearest[1] + nearest[2] * nearest[2];
+  const V d2Max = farthest[0] * farthest[0] + farthest[1] * farthest[1] + farthest[2] * farthest[2];
+  const auto touching = !directional && d2Min == 0.0f;  // unbounded
+  const V dist = vsqrt(d2Min);
+
+  // region_bounds::sphereCosines.
+  V centre[3], extent[3];
+  for (int c = 0; c < 3; ++c) {
+    centre[c] = 0.5f * (dMin[c] + dMax[c]);
+    extent[c] = dMax[c] - dMin[c];
+  }
+  const V r2 = 0.25f * (extent[0] * extent[0] + extent[1] * extent[1] + extent[2] * extent[2]);
+  const V d2Centre = centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2];
+  const auto inside = d2Centre <= r2;
+  const V cosT =
+      (g.axis.x * centre[0] + g.axis.y * centre[1] + g.axis.z * centre[2]) / vsqrt(d2Centre);
+  const V sinT = vsqrt(vmax(1.0f - cosT * cosT, zero));
+  const V sinA = vsqrt(r2 / d2Centre);
+  const V cosA = vsqrt(1.0f - sinA * sinA);
+  V sphereUpper = cosT >= cosA ? one : cosT * cosA + sinT * sinA;
+  V sphereLower = vmax(cosT * cosA - sinT * sinA, zero);
+  sphereUpper = inside ? one : sphereUpper;
+  sphereLower = inside ? zero : sphereLower;
+
+  // region_bounds::cosineUpper, then widenUp.
+  V m[3];
+  for (int c = 0; c < 3; ++c) m[c] = vmax(g.axis[c] * dMin[c], g.axis[c] * dMax[c]);
+  const V num = m[0] + m[1] + m[2];
+  const V boxUpper = num <= 0.0f ? zero : (dist > 0.0f ? vmin(num / dist, one) : one);
+  V cosUp = one;
+  if (g.cosSpread > 0.0f) {
+    const V c = clampLanes(vmin(boxUpper, sphereUpper), 0.0f, 1.0f);
+    const V s = vsqrt(1.0f - c * c);
+    cosUp = s <= g.sinSpread ? one : c * g.cosSpread + s * g.sinSpread;
+  }
+
+  // region_bounds::spotMayReach (the node's cone: axis, cos θ in w2, sin θ).
+  V boxCentre[3], boxExtent[3], toP[3];
+  for (int c = 0; c < 3; ++c) {
+    const V bMin = load(in.boxMin[c] + l), bMax = load(in.boxMax[c] + l);
+    boxCentre[c] = 0.5f * (bMin + bMax);
+    boxExtent[c] = bMax - bMin;
+    toP[c] = r.centre[c] - boxCentre[c];
+  }
+  const V reach = 0.5f * vsqrt(boxExtent[0] * boxExtent[0] + boxExtent[1] * boxExtent[1] +
+                               boxExtent[2] * boxExtent[2]) +
+                  r.halfDiagonal;
+  const V d = vsqrt(toP[0] * toP[0] + toP[1] * toP[1] + toP[2] * toP[2]);
+  const V spotCos = load(in.w2 + l), spotSin = load(in.sinTheta + l);
+  const V sinR = reach / d;
+  const V cosR = vsqrt(vmax(1.0f - sinR * sinR, zero));
+  const V sinSum = spotSin * cosR + spotCos * sinR;
+  const V cosSum = spotCos * cosR - spotSin * sinR;
+  V axis[3];
+  for (int c = 0; c < 3; ++c) axis[c] = load(in.axis[c] + l);
+  const auto spotReaches = d <= reach || sinSum < 0.0f ||
+                           (axis[0] * toP[0] + axis[1] * toP[1] + axis[2] * toP[2]) / d >= cosSum;
+  const auto lit = cosUp > 0.0f && (!spot || spotReaches);
+
+  // The node's upper (and under the total rule lower) bound per unit albedo.
+  const V invRange2 = load(in.invRange2 + l), w2 = load(in.w2 + l);
+  const V gUp =
+      directional ? one : windowLanes(d2Min, invRange2) / vmax(d2Min, splat(kMinDistanceSquared));
+  const V gLow = directional ? one
+                 : spot      ? zero
+                             : windowLanes(d2Max, w2) / vmax(d2Max, splat(kMinDistanceSquared));
+  const V slack = r.slackRate * maxOfLanes(intensity) + r.slackFloor;
+  const V upperScale = cosUp * gUp / kPi;
+  V upper[3], lower[3] = {zero, zero, zero};
+  for (int c = 0; c < 3; ++c) upper[c] = lit ? (intensity[c] + slack) * upperScale : zero;
+  const auto unbounded = touching || (lit && !(vabs(maxOfLanes(upper)) <= 3.40282347e+38f));
+  if (r.total) {
+    // region_bounds::cosineLower, then widenDown.
+    for (int c = 0; c < 3; ++c) m[c] = vmin(g.axis[c] * dMin[c], g.axis[c] * dMax[c]);
+    const V numLow = m[0] + m[1] + m[2];
+    V cosLow = zero;
+    if (g.cosSpread > 0.0f) {
+      const V boxLower = numLow > 0.0f ? vmin(numLow / vsqrt(d2Max), one) : zero;
+      const V c = clampLanes(vmax(boxLower, sphereLower), 0.0f, 1.0f);
+      cosLow = vmax(c * g.cosSpread - vsqrt(1.0f - c * c) * g.sinSpread, zero);
+    }
+    const V lowerScale = cosLow * gLow / kPi;
+    const auto on = lit && gLow > 0.0f;
+    for (int c = 0; c < 3; ++c)
+      lower[c] = on ? vmax(intensity[c] - slack, zero) * lowerScale : zero;
+  }
+  store(out.dark + l, !unbounded && maxOfLanes(upper) <= 0.0f ? one : zero);
+  V error[3];
+  for (int c = 0; c < 3; ++c) error[c] = r.total ? upper[c] - lower[c] : upper[c];
+  const V measure = unbounded ? splat(__builtin_inff()) : maxOfLanes(error);
+  store(out.measure + l, leaf ? splat(-1.0f) : measure);
+  for (int c = 0; c < 3; ++c) store(out.error[c] + l, leaf || unbounded ? zero : error[c]);
+}

@@ -1,0 +1,114 @@
+// The CPU cut's node bounds eight lanes at once (AVX2) against one lane at a time: the same
+// results bit for bit, on random nodes and regions that take every branch.
+#include "render/node_lanes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <random>
+
+namespace manylight {
+namespace {
+
+NodeLanes randomNodes(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  NodeLanes n{};
+  for (int l = 0; l < kLanes; ++l) {
+    const int tree = int(rng() % 3);
+    n.tree[l] = float(tree);
+    n.leaf[l] = rng() % 4 == 0 ? 1.0f : 0.0f;
+    for (int c = 0; c < 3; ++c) {
+      const float a = 4.0f * u(rng), b = 4.0f * u(rng);
+      n.boxMin[c][l] = std::min(a, b);
+      n.boxMax[c][l] = n.leaf[l] != 0.0f ? n.boxMin[c][l] : std::max(a, b);
+      n.intensity[c][l] = 2.0f + u(rng);
+      n.axis[c][l] = u(rng);
+      n.repPoint[c][l] = n.boxMin[c][l];
+      n.repAxis[c][l] = u(rng);
+    }
+    switch (rng() % 8) {
+      case 0:  // unbounded: infinite intensity
+        n.intensity[1][l] = std::numeric_limits<float>::infinity();
+        break;
+      case 1:  // a box around the region's centre
+        for (int c = 0; c < 3; ++c) n.boxMin[c][l] = -5.0f, n.boxMax[c][l] = 5.0f;
+        break;
+      default:
+        break;
+    }
+    n.invRange2[l] = rng() % 2 ? 0.0f : 0.05f + 0.1f * std::abs(u(rng));
+    // Spots: cos θ of their cone; others: the largest 1/range² (lower bounds use it).
+    n.w2[l] = tree == 2 ? u(rng) : n.invRange2[l] * 1.5f;
+    n.sinTheta[l] = std::sqrt(std::max(1.0f - n.w2[l] * n.w2[l], 0.0f));
+    n.repInvRange2[l] = n.invRange2[l];
+    n.repCos[l] = u(rng);
+    n.knownUnit[l] = rng() % 3 == 0 ? 1.0f : 0.0f;
+    n.unit[l] = std::abs(u(rng));
+  }
+  return n;
+}
+
+RegionTerms randomRegion(std::mt19937& rng, bool total) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  RegionTerms r{};
+  const glm::vec3 p(u(rng), u(rng), u(rng)), size(0.3f * std::abs(u(rng)));
+  r.g.pMin = p - size;
+  r.g.pMax = p + size;
+  r.g.axis = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.0f, 0.01f, 0.0f));
+  r.g.cosSpread = rng() % 5 == 0 ? -0.2f : 0.8f + 0.2f * std::abs(u(rng));
+  r.g.sinSpread = std::sqrt(std::max(1.0f - r.g.cosSpread * r.g.cosSpread, 0.0f));
+  r.centre = 0.5f * (r.g.pMin + r.g.pMax);
+  r.halfDiagonal = 0.5f * glm::length(r.g.pMax - r.g.pMin);
+  r.slackRate = 0.01f;
+  r.slackFloor = 1e-6f;
+  r.total = total;
+  return r;
+}
+
+TEST(NodeLanes, EightLanesGiveOneLanesResultsBitForBit) {
+  std::mt19937 rng(7);
+  int unbounded = 0, dark = 0, leaves = 0, bounded = 0;
+  for (int round = 0; round < 4000; ++round) {
+    const NodeLanes in = randomNodes(rng);
+    const RegionTerms region = randomRegion(rng, round % 2 == 1);
+    BoundLanes wide, one;
+    std::memset(&wide, 0, sizeof wide);
+    std::memset(&one, 0, sizeof one);
+    nodeBounds(region, in, kLanes, wide, true);
+    nodeBounds(region, in, kLanes, one, false);
+    ASSERT_EQ(std::memcmp(&wide, &one, sizeof wide), 0) << "round " << round;
+    for (int l = 0; l < kLanes; ++l) {
+      const float m = one.measure[l];
+      if (in.leaf[l] != 0.0f) {
+        ++leaves;
+        EXPECT_EQ(m, -1.0f);
+        EXPECT_EQ(one.error[0][l] + one.error[1][l] + one.error[2][l], 0.0f);
+      } else if (std::isinf(m)) {
+        ++unbounded;
+        EXPECT_EQ(one.dark[l], 0.0f);
+      } else {
+        EXPECT_GE(m, 0.0f);
+        if (one.dark[l] != 0.0f) {
+          ++dark;
+          EXPECT_EQ(m, 0.0f);
+        }
+        if (m > 0.0f) ++bounded;
+      }
+      if (in.knownUnit[l] != 0.0f) {
+        EXPECT_EQ(one.unit[l], in.unit[l]);
+      }
+    }
+  }
+  // Every branch was taken.
+  EXPECT_GT(unbounded, 100);
+  EXPECT_GT(dark, 100);
+  EXPECT_GT(leaves, 100);
+  EXPECT_GT(bounded, 100);
+  if (!wideNodeBounds()) std::printf("note: no AVX2 here; both ran one lane at a time\n");
+}
+
+}  // namespace
+}  // namespace manylight
