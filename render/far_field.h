@@ -90,8 +90,11 @@ class FarField {
   void add(glm::vec3 position, float invRange2, const Cone* cone, glm::vec3 intensity);
 
   glm::dvec3 centre_;
-  std::array<glm::dvec3, 3> f_{};  // per channel
-  std::array<glm::dmat3, 3> j_{glm::dmat3(0.0), glm::dmat3(0.0), glm::dmat3(0.0)};
+  struct Channel {
+    glm::dvec3 f{0.0};
+    glm::dmat3 j{0.0};
+  };
+  std::array<Channel, 3> channels_{};  // R, G, B
   int count_ = 0;
 };
 
