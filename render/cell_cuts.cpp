@@ -247,13 +247,17 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     }
     const std::vector<int> grown = grow(px, cellOfPixel, outside);
     for (const std::size_t i : pending) outside[i] = 0;
+    // Under the node rule cells split (or fall back to the frame's squares) where their cut
+    // exceeds kSplitCut, as the frame's groups larger than the finest do.
+    CutRule cellRule = rule;
+    if (!rule.total) cellRule.maxCut = std::min(rule.maxCut, kSplitCut);
     const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));
     std::vector<long long> bounds(std::size_t(workers), 0);
     auto work = [&](int t) {
       for (std::size_t k = std::size_t(t); k < grown.size(); k += std::size_t(workers)) {
         Cell& cell = cells_[std::size_t(grown[k])];
         cell.entries.clear();
-        cell.cut = cutter_.cutRegion(cell.region, rule, true, cell.entries);
+        cell.cut = cutter_.cutRegion(cell.region, cellRule, true, cell.entries);
         cell.perPixel = cell.cut.perPixel;
         cell.split = cell.perPixel && level < kMaxCellLevel;
         if (cell.perPixel) cell.entries.clear();

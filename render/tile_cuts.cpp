@@ -189,8 +189,9 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
            (have <= target(margin, errors) || (rule.total && have <= kAbsoluteFloor));
   };
   // Whether a cut of `size` entries, the largest bound `top`, can take no more refining.
+  const int limit = finest || rule.total ? rule.maxCut : std::min(rule.maxCut, kSplitCut);
   auto full = [&](int size, float top) {
-    return size + 1 > rule.maxCut || (!rule.total && 2 * size > rule.maxCut &&
+    return size + 1 > limit || (!rule.total && 2 * size > limit &&
                                       top > kHopeless * kMargin * rule.error * maxOf(sum));
   };
   auto topOfHeap = [&] { return layout::floatOf(std::uint32_t(heap.front() >> 32)); };

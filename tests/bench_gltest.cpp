@@ -114,7 +114,7 @@ TEST(Cli, BenchWritesEveryRunAsCsvAndJson) {
   const std::string csv = readFile(dir / "s.csv");
   EXPECT_EQ(csv.rfind("case,layout,lights,method,mode,error,max_cut,", 0), 0u);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4 * 3);
-  EXPECT_NE(csv.find("\nstreet-40,street,40,lightcuts,node,0.1,1000,32,24,1,"), std::string::npos)
+  EXPECT_NE(csv.find("\nstreet-40,street,40,lightcuts,node,0.1,2000,32,24,1,"), std::string::npos)
       << csv;
   const auto json = nlohmann::json::parse(readFile(dir / "s.json"));
   EXPECT_EQ(json["runs"].size(), 12u);
