@@ -5,7 +5,6 @@
 
 #include "bake/light_tree_layout.h"
 #include "render/cpu_clones.h"
-#include "scene/shading_model.h"
 
 namespace manylight {
 namespace {
@@ -19,37 +18,6 @@ void writeTexel(std::vector<std::uint32_t>& words, glm::dvec3 v) {
 double smoothstepSlope(double t) { return 6.0 * t * (1.0 - t); }
 
 }  // namespace
-
-MANYLIGHT_AVX2_CLONES
-ConeVariation coneVariation(float scale, float offset, float outerCos, glm::vec2 cosines) {
-  ConeVariation v;
-  v.scale = scale;
-  const double t0 = std::clamp(double(scale) * cosines.x + offset, 0.0, 1.0);
-  const double t1 = std::clamp(double(scale) * cosines.y + offset, 0.0, 1.0);
-  v.constant = t1 <= 0.0 || t0 >= 1.0;
-  if (v.constant) {
-    v.slope = v.curvature = 0.0;
-    return v;
-  }
-  v.slope = t0 <= 0.5 && t1 >= 0.5 ? 1.5 : std::max(smoothstepSlope(t0), smoothstepSlope(t1));
-  v.curvature = std::max(std::abs(6.0 - 12.0 * t0), std::abs(6.0 - 12.0 * t1));
-  const double cosine = std::max(double(cosines.x), double(outerCos));
-  v.sine = cosine > 0.0 ? std::sqrt(1.0 - cosine * cosine) : 1.0;
-  return v;
-}
-
-MANYLIGHT_AVX2_CLONES
-double linearisationBound(double rMin2, double invRange2, double h2, const ConeVariation* cone) {
-  const double a = invRange2;
-  double secondDerivative = 6.0 / (rMin2 * rMin2) + 15.4 * a / rMin2 + 32.0 * a * a;
-  if (cone && !cone->constant) {
-    const double k = cone->scale, q = k * cone->sine, s1 = cone->slope;
-    secondDerivative +=
-        (1.415 * s1 * k + 4.0 * s1 * q + cone->curvature * q * q) / (rMin2 * rMin2) +
-        6.16 * s1 * q * a / rMin2;
-  }
-  return 0.5 * secondDerivative * h2 / shading::kPi;
-}
 
 void FarField::addDirectional(glm::vec3 towards, glm::vec3 intensity) {
   for (int c = 0; c < 3; ++c)

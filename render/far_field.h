@@ -34,6 +34,8 @@
 //            ≤ (6 + 1.415·σ'₁·k + 4·σ'₁·q + σ''₁·q²)/r⁴ + (15.4 + 6.16·σ'₁·q)·a/r² + 32·a².
 // Where the cone is constant over the whole tile (all its light through, or none), S f
 // has the point light's bound; a spot with a hard edge (k infinite) does not fold.
+// T is computed, in single precision, by foldBounds (render/node_lanes.h), which also says
+// which entries light every point of the group from in front.
 //
 // Texels (4 words, float bits), kFarFieldTexels of them: c; F per channel R, G, B; then
 // per channel the three columns of J.
@@ -45,22 +47,6 @@
 namespace manylight {
 
 inline constexpr int kFarFieldTexels = 13;
-
-// How a spot's cone S = σ(t), t = clamp(k·cos + o, 0, 1), varies over a box: its scale k,
-// the largest sine to the axis where S varies, and the largest |σ'| and |σ''| there.
-struct ConeVariation {
-  double scale = 0.0, sine = 1.0, slope = 1.5, curvature = 6.0;
-  bool constant = false;  // S is one value over the box
-};
-// From the cone's scale k and offset o, the cosine of its outer angle, and the lowest and
-// highest cosine to its axis over the box (region_bounds.h axisCosines).
-ConeVariation coneVariation(float scale, float offset, float outerCos, glm::vec2 cosines);
-
-// The per-unit-albedo linearisation bound T per unit intensity (multiply by I), for a point
-// light whose nearest distance² to the tile's box is rMin2, over a box of half-diagonal²
-// h2; for a spot whose cone varies over the box, with `cone`.
-double linearisationBound(double rMin2, double invRange2, double h2,
-                          const ConeVariation* cone = nullptr);
 
 class FarField {
  public:

@@ -47,6 +47,10 @@ void nodeBounds(const RegionTerms& region, const NodeLanes& in, BoundLanes& out)
   nodeBoundLanes(region, in, 0, out);
 }
 
+void foldBounds(const RegionTerms& region, const FoldLanes& in, float* t) {
+  foldBoundLanes(region, in, 0, t);
+}
+
 }  // namespace eight_lanes
 #pragma GCC pop_options
 #endif
@@ -69,6 +73,17 @@ void nodeBounds(const RegionTerms& region, const NodeLanes& in, int count, Bound
   }
 #endif
   for (int l = 0; l < count; ++l) one_lane::nodeBoundLanes(region, in, l, out);
+}
+
+void foldBounds(const RegionTerms& region, const FoldLanes& in, int count, float t[kLanes],
+                bool wide) {
+#ifdef MANYLIGHT_AVX2_LANES
+  if (wide && wideNodeBounds()) {
+    eight_lanes::foldBounds(region, in, t);
+    return;
+  }
+#endif
+  for (int l = 0; l < count; ++l) one_lane::foldBoundLanes(region, in, l, t);
 }
 
 }  // namespace manylight

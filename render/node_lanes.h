@@ -1,8 +1,8 @@
 #pragma once
-// The CPU cut's node bounds (render/tile_cuts.cpp) for up to kLanes nodes at once: the same
-// arithmetic as region_bounds.h's helpers, written once over a lane type, one float or, on
-// x86-64 CPUs with AVX2 (under GCC), eight in a register. Every lane takes every branch and
-// the results are selected, so the two give the same results bit for bit: the same IEEE
+// The CPU cut's node bounds and far field linearisation bounds (render/tile_cuts.cpp) for up
+// to kLanes nodes at once (render/node_lanes_kernel.h), written once over a lane type: one
+// float or, on x86-64 CPUs with AVX2 (under GCC), eight in a register. Every lane takes every
+// branch and the results are selected, so the two give the same results bit for bit: the same IEEE
 // operations in the same order (no fused multiply-add, nothing reassociated; min and max
 // keep std::min and std::max's operand order).
 #include <glm/glm.hpp>
@@ -28,6 +28,7 @@ struct RegionTerms {
   ShadingRegion g;
   glm::vec3 centre;
   float halfDiagonal;           // 0.5 · |pMax − pMin|
+  float h2;                     // its square, as 0.25 · |pMax − pMin|²
   float slackRate, slackFloor;  // node colours' decoding slack (NodeColourCoder)
   bool total;                   // the total rule: lower bounds too
 };
@@ -46,5 +47,17 @@ struct BoundLanes {
 void nodeBounds(const RegionTerms& region, const NodeLanes& in, int count, BoundLanes& out,
                 bool wide = true);
 bool wideNodeBounds();  // whether `wide` takes eight lanes at once here
+
+// Up to kLanes entries of a cut (their representatives' lights), one lane each, and their far
+// field linearisation bounds T (render/far_field.h) per unit albedo and intensity over the
+// region, or −1 where they do not fold.
+struct FoldLanes {
+  float tree[kLanes];
+  float repPoint[3][kLanes], repAxis[3][kLanes], repInvRange2[kLanes];
+  float repCos[kLanes];                         // a spot's outer cosine
+  float coneScale[kLanes], coneOffset[kLanes];  // a spot's cone (SpotConeTerms)
+};
+void foldBounds(const RegionTerms& region, const FoldLanes& in, int count, float t[kLanes],
+                bool wide = true);
 
 }  // namespace manylight

@@ -1,9 +1,11 @@
 // The node bounds of render/node_lanes.h over lanes of type V, included twice by
 // render/node_lanes.cpp: V = float, and V = __m256 under GCC's AVX2 target. It expects V,
 // splat(float) → V, load(const float*) → V, store(float*, V), and vsqrt, vabs, vmin, vmax
-// with std::min and std::max's semantics ((b < a) ? b : a and (a < b) ? b : a). Each step
-// is the one region_bounds.h's helper (or tile_cuts.cpp's) takes, in the same order; the
-// branches of those helpers are taken by every lane and their results selected.
+// with std::min and std::max's semantics ((b < a) ? b : a and (a < b) ? b : a). The bounds
+// are those glsl/lighting_lightcuts.frag's nodeBounds puts on a node at one point, over a
+// region of shading points instead (a box of positions, a cone of normals). Every branch is
+// taken by every lane and its results selected. (Until session 12 the CPU cut took the same
+// steps one node at a time; the images were the same bit for bit.)
 // No include guard: included once per lane type.
 
 // libstdc++'s std::clamp: (v < lo) ? lo : (hi < v) ? hi : v.
@@ -11,7 +13,7 @@ MANYLIGHT_INLINE inline V clampLanes(V v, float lo, float hi) {
   return v < lo ? splat(lo) : (hi < v ? splat(hi) : v);
 }
 
-// region_bounds::window.
+// The range window clamp(1 − (d²/range²)², 0, 1)² (glsl/shading.glsl).
 MANYLIGHT_INLINE inline V windowLanes(V d2, V invRange2) {
   const V x = d2 * invRange2;
   const V w = clampLanes(1.0f - x * x, 0.0f, 1.0f);
@@ -71,7 +73,8 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   const auto touching = !directional && d2Min == 0.0f;  // unbounded
   const V dist = vsqrt(d2Min);
 
-  // region_bounds::sphereCosines.
+  // The largest and smallest cosine to the region's axis over the bounding sphere of the box
+  // of vectors [dMin, dMax].
   V centre[3], extent[3];
   for (int c = 0; c < 3; ++c) {
     centre[c] = 0.5f * (dMin[c] + dMax[c]);
@@ -90,7 +93,8 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   sphereUpper = inside ? one : sphereUpper;
   sphereLower = inside ? zero : sphereLower;
 
-  // region_bounds::cosineUpper, then widenUp.
+  // The largest cosine over the box itself, then widened by the spread γ of the region's
+  // normals about their axis: cos(max(θ − γ, 0)).
   V m[3];
   for (int c = 0; c < 3; ++c) m[c] = vmax(g.axis[c] * dMin[c], g.axis[c] * dMax[c]);
   const V num = m[0] + m[1] + m[2];
@@ -102,7 +106,9 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
     cosUp = s <= g.sinSpread ? one : c * g.cosSpread + s * g.sinSpread;
   }
 
-  // region_bounds::spotMayReach (the node's cone: axis, cos θ in w2, sin θ).
+  // Whether some light of a spot node may shine on some point of the region: its cone (axis,
+  // cos θ in w2, sin θ) widened by the angular radius of the node's and the region's
+  // bounding spheres together.
   V boxCentre[3], boxExtent[3], toP[3];
   for (int c = 0; c < 3; ++c) {
     const V bMin = load(in.boxMin[c] + l), bMax = load(in.boxMax[c] + l);
@@ -138,7 +144,8 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   for (int c = 0; c < 3; ++c) upper[c] = lit ? (intensity[c] + slack) * upperScale : zero;
   const auto unbounded = touching || (lit && !(vabs(maxOfLanes(upper)) <= 3.40282347e+38f));
   if (r.total) {
-    // region_bounds::cosineLower, then widenDown.
+    // The smallest cosine over the box (or its sphere), narrowed by the normals' spread:
+    // cos(min(θ + γ, π/2))⁺.
     for (int c = 0; c < 3; ++c) m[c] = vmin(g.axis[c] * dMin[c], g.axis[c] * dMax[c]);
     const V numLow = m[0] + m[1] + m[2];
     V cosLow = zero;
@@ -158,4 +165,97 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   const V measure = unbounded ? splat(__builtin_inff()) : maxOfLanes(error);
   store(out.measure + l, leaf ? splat(-1.0f) : measure);
   for (int c = 0; c < 3; ++c) store(out.error[c] + l, leaf || unbounded ? zero : error[c]);
+}
+
+// The far field's linearisation bound T per unit albedo and intensity (render/far_field.h)
+// for lanes [l, l + width of V) of `in`, or −1 where the entry does not fold: a directional
+// or point light that does not light every point of the region from in front, a spot with a
+// hard edge, or a bound that overflows.
+MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLanes& in, int l,
+                                            float* out) {
+  constexpr float kPi = 3.14159265358979323846f;
+  const ShadingRegion& g = r.g;
+  const V zero = splat(0.0f), one = splat(1.0f);
+  const V tree = load(in.tree + l);
+  const auto directional = tree == 0.0f, spot = tree == 2.0f;
+  V rep[3], axis[3];
+  for (int c = 0; c < 3; ++c) {
+    rep[c] = load(in.repPoint[c] + l);
+    axis[c] = load(in.repAxis[c] + l);
+  }
+  // cos(min(θ + γ, π/2))⁺ for θ = acos(c): the smallest cosine to any normal of the region.
+  auto widenDown = [&](V c) MANYLIGHT_INLINE {
+    if (g.cosSpread <= 0.0f) return zero;
+    c = clampLanes(c, 0.0f, 1.0f);
+    return vmax(c * g.cosSpread - vsqrt(1.0f - c * c) * g.sinSpread, zero);
+  };
+  // A directional light: in front of every normal.
+  const auto directionalFront =
+      widenDown(g.axis.x * rep[0] + g.axis.y * rep[1] + g.axis.z * rep[2]) > 0.0f;
+
+  // A point or spot light: in front of every point (the smallest cosine over the box of
+  // vectors from the region to the light, as in nodeBoundLanes).
+  V dMin[3], dMax[3], nearest[3], farthest[3], centre[3], extent[3], m[3];
+  for (int c = 0; c < 3; ++c) {
+    dMin[c] = rep[c] - g.pMax[c];
+    dMax[c] = rep[c] - g.pMin[c];
+    nearest[c] = vmin(vmax(zero, dMin[c]), dMax[c]);
+    farthest[c] = vmax(vabs(dMin[c]), vabs(dMax[c]));
+    centre[c] = 0.5f * (dMin[c] + dMax[c]);
+    extent[c] = dMax[c] - dMin[c];
+    m[c] = vmin(g.axis[c] * dMin[c], g.axis[c] * dMax[c]);
+  }
+  const V d2Min = nearest[0] * nearest[0] + nearest[1] * nearest[1] + nearest[2] * nearest[2];
+  const V d2Max = farthest[0] * farthest[0] + farthest[1] * farthest[1] + farthest[2] * farthest[2];
+  const V r2 = 0.25f * (extent[0] * extent[0] + extent[1] * extent[1] + extent[2] * extent[2]);
+  const V d2Centre = centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2];
+  const V cosT =
+      (g.axis.x * centre[0] + g.axis.y * centre[1] + g.axis.z * centre[2]) / vsqrt(d2Centre);
+  const V sinT = vsqrt(vmax(1.0f - cosT * cosT, zero));
+  const V sinA = vsqrt(r2 / d2Centre);
+  const V cosA = vsqrt(1.0f - sinA * sinA);
+  const V sphereLower = d2Centre <= r2 ? zero : vmax(cosT * cosA - sinT * sinA, zero);
+  const V num = m[0] + m[1] + m[2];
+  const V boxLower = num > 0.0f ? vmin(num / vsqrt(d2Max), one) : zero;
+  const auto pointFront = d2Min > 0.0f && widenDown(vmax(boxLower, sphereLower)) > 0.0f;
+
+  // A spot's cone over the region: the lowest and highest cosine between its axis and a
+  // direction from the light to the region's bounding sphere (−1 and 1 from inside it), then
+  // far_field.h's variation: the slope and curvature of its smoothstep where it varies, the
+  // largest sine to its axis there.
+  V w[3];
+  for (int c = 0; c < 3; ++c) w[c] = r.centre[c] - rep[c];
+  const V d = vsqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  const auto insideCone = d <= r.halfDiagonal;
+  const V cosW = (axis[0] * w[0] + axis[1] * w[1] + axis[2] * w[2]) / d;
+  const V sinW = vsqrt(vmax(1.0f - cosW * cosW, zero));
+  const V sinB = r.halfDiagonal / d, cosB = vsqrt(vmax(1.0f - sinB * sinB, zero));
+  V low = sinW * cosB + cosW * sinB < 0.0f ? splat(-1.0f) : cosW * cosB - sinW * sinB;
+  V high = cosW >= cosB ? one : cosW * cosB + sinW * sinB;
+  low = insideCone ? splat(-1.0f) : low;
+  high = insideCone ? one : high;
+  const V scale = load(in.coneScale + l), offset = load(in.coneOffset + l);
+  const V t0 = clampLanes(scale * low + offset, 0.0f, 1.0f);
+  const V t1 = clampLanes(scale * high + offset, 0.0f, 1.0f);
+  const auto varies = !(t1 <= 0.0f || t0 >= 1.0f);
+  const V slope = t0 <= 0.5f && t1 >= 0.5f ? splat(1.5f)
+                                           : vmax(6.0f * t0 * (1.0f - t0), 6.0f * t1 * (1.0f - t1));
+  const V curvature = vmax(vabs(6.0f - 12.0f * t0), vabs(6.0f - 12.0f * t1));
+  const V cosine = vmax(low, load(in.repCos + l));
+  const V sine = cosine > 0.0f ? vsqrt(1.0f - cosine * cosine) : one;
+  const auto hardEdge = !(vabs(scale) <= 3.40282347e+38f);
+
+  // ‖D²f‖ (far_field.h), then T.
+  const V a = load(in.repInvRange2 + l);
+  const V rMin4 = d2Min * d2Min;
+  V second = 6.0f / rMin4 + 15.4f * a / d2Min + 32.0f * a * a;
+  const V q = scale * sine;
+  const V coneTerm = (1.415f * slope * scale + 4.0f * slope * q + curvature * q * q) / rMin4 +
+                     6.16f * slope * q * a / d2Min;
+  second = spot && varies ? second + coneTerm : second;
+  const V bound = 0.5f * second * r.h2 / kPi;
+  const auto folds = pointFront && !(spot && hardEdge) && vabs(bound) <= 3.40282347e+38f;
+  const V result =
+      directional ? (directionalFront ? zero : splat(-1.0f)) : (folds ? bound : splat(-1.0f));
+  store(out + l, result);
 }

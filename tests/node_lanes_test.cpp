@@ -1,5 +1,5 @@
-// The CPU cut's node bounds eight lanes at once (AVX2) against one lane at a time: the same
-// results bit for bit, on random nodes and regions that take every branch.
+// The CPU cut's node and fold bounds eight lanes at once (AVX2) against one lane at a time:
+// the same results bit for bit, on random nodes and regions that take every branch.
 #include "render/node_lanes.h"
 
 #include <gtest/gtest.h>
@@ -62,6 +62,7 @@ RegionTerms randomRegion(std::mt19937& rng, bool total) {
   r.g.sinSpread = std::sqrt(std::max(1.0f - r.g.cosSpread * r.g.cosSpread, 0.0f));
   r.centre = 0.5f * (r.g.pMin + r.g.pMax);
   r.halfDiagonal = 0.5f * glm::length(r.g.pMax - r.g.pMin);
+  r.h2 = 0.25f * glm::dot(r.g.pMax - r.g.pMin, r.g.pMax - r.g.pMin);
   r.slackRate = 0.01f;
   r.slackFloor = 1e-6f;
   r.total = total;
@@ -108,6 +109,49 @@ TEST(NodeLanes, EightLanesGiveOneLanesResultsBitForBit) {
   EXPECT_GT(leaves, 100);
   EXPECT_GT(bounded, 100);
   if (!wideNodeBounds()) std::printf("note: no AVX2 here; both ran one lane at a time\n");
+}
+
+// The far field's linearisation bounds of entries, eight at once and one at a time.
+TEST(NodeLanes, EightLanesGiveOneLanesFoldBoundsBitForBit) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int folds = 0, unfolded = 0, spotsFolded = 0;
+  for (int round = 0; round < 4000; ++round) {
+    const RegionTerms region = randomRegion(rng, false);
+    FoldLanes in{};
+    for (int l = 0; l < kLanes; ++l) {
+      in.tree[l] = float(rng() % 3);
+      for (int c = 0; c < 3; ++c) {
+        in.repPoint[c][l] = 3.0f * u(rng);
+        in.repAxis[c][l] = u(rng);
+      }
+      in.repInvRange2[l] = rng() % 2 ? 0.0f : 0.05f;
+      in.repCos[l] = std::abs(u(rng));
+      in.coneScale[l] =
+          rng() % 10 == 0 ? std::numeric_limits<float>::infinity() : 5.0f * std::abs(u(rng));
+      in.coneOffset[l] = u(rng);
+    }
+    float wide[kLanes], one[kLanes];
+    foldBounds(region, in, kLanes, wide, true);
+    foldBounds(region, in, kLanes, one, false);
+    ASSERT_EQ(std::memcmp(wide, one, sizeof wide), 0) << "round " << round;
+    for (int l = 0; l < kLanes; ++l) {
+      if (one[l] < 0.0f) {
+        EXPECT_EQ(one[l], -1.0f);
+        ++unfolded;
+        continue;
+      }
+      ++folds;
+      if (in.tree[l] == 2.0f) {
+        ++spotsFolded;
+        EXPECT_TRUE(std::isfinite(in.coneScale[l]));  // a hard edge never folds
+      }
+      if (in.tree[l] == 0.0f) EXPECT_EQ(one[l], 0.0f);  // a directional light is linear
+    }
+  }
+  EXPECT_GT(folds, 1000);
+  EXPECT_GT(unfolded, 1000);
+  EXPECT_GT(spotsFolded, 100);
 }
 
 }  // namespace

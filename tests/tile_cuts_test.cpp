@@ -18,7 +18,7 @@
 #include "render/cell_cuts.h"
 #include "render/cut_heap.h"
 #include "render/far_field.h"
-#include "render/region_bounds.h"
+#include "render/node_lanes.h"
 #include "scene/light_layouts.h"
 #include "scene/shading_model.h"
 
@@ -240,17 +240,35 @@ TEST(FarField, SpotWithItsConeIsItsFirstOrderExpansion) {
   far.write(words);
   const double h = 0.3;  // half-diagonal of the box the offsets stay in
   const glm::dvec3 boxMin = c - glm::dvec3(h / std::sqrt(3.0)), boxMax = 2.0 * c - boxMin;
-  const glm::dvec3 nearest = glm::clamp(glm::dvec3(spot.position), boxMin, boxMax);
-  const double rMin2 =
-      glm::dot(nearest - glm::dvec3(spot.position), nearest - glm::dvec3(spot.position));
-  const ConeVariation variation =
-      coneVariation(cone.scale, cone.offset, std::cos(spot.outerConeAngle),
-                    region_bounds::axisCosines(spot.direction, spot.position, glm::vec3(boxMin),
-                                               glm::vec3(boxMax)));
-  ASSERT_FALSE(variation.constant);
-  const double bound =
-      linearisationBound(rMin2, 1.0 / (spot.range * spot.range), h * h, &variation) * shading::kPi;
   const glm::dvec3 n = glm::normalize(glm::dvec3(0.1, 1.0, -0.2));
+  // T over the box (per unit albedo and intensity, so times π per unit irradiance), with the
+  // spot's cone (lane 0) and as a point light (lane 1): the cone's variation adds to it.
+  RegionTerms region{};
+  region.g.pMin = glm::vec3(boxMin);
+  region.g.pMax = glm::vec3(boxMax);
+  region.g.axis = glm::vec3(n);
+  region.g.cosSpread = 1.0f;
+  region.g.sinSpread = 0.0f;
+  region.centre = 0.5f * (region.g.pMin + region.g.pMax);
+  region.halfDiagonal = 0.5f * glm::length(region.g.pMax - region.g.pMin);
+  region.h2 = region.halfDiagonal * region.halfDiagonal;
+  FoldLanes in{};
+  for (int l = 0; l < 2; ++l) {
+    in.tree[l] = l == 0 ? 2.0f : 1.0f;
+    for (int c = 0; c < 3; ++c) {
+      in.repPoint[c][l] = spot.position[c];
+      in.repAxis[c][l] = spot.direction[c];
+    }
+    in.repInvRange2[l] = 1.0f / (spot.range * spot.range);
+    in.repCos[l] = std::cos(spot.outerConeAngle);
+    in.coneScale[l] = cone.scale;
+    in.coneOffset[l] = cone.offset;
+  }
+  float bounds[kLanes];
+  foldBounds(region, in, 2, bounds);
+  ASSERT_GT(bounds[1], 0.0f);
+  ASSERT_GT(bounds[0], 1.5f * bounds[1]);
+  const double bound = double(bounds[0]) * shading::kPi;
   for (const glm::dvec3 dir : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1),
                                glm::normalize(glm::dvec3(1, -1, 1))}) {
     for (const double delta : {1e-3, 0.1, h / std::sqrt(3.0)}) {
