@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "render/cpu_clones.h"
 
@@ -51,6 +52,31 @@ void foldBounds(const RegionTerms& region, const FoldLanes& in, float* t) {
   foldBoundLanes(region, in, 0, t);
 }
 
+// Eight rows of eight floats (one per node) into eight rows of eight lanes.
+void gatherNodes(const float* const nodes[kLanes], NodeLanes& out) {
+  float* rows = reinterpret_cast<float*>(&out);
+  for (int block = 0; block < kNodeRows; block += 8) {
+    __m256 r[8];
+    for (int k = 0; k < 8; ++k) r[k] = _mm256_load_ps(nodes[k] + block);
+    __m256 t[8], u[8];
+    for (int k = 0; k < 8; k += 2) {
+      t[k] = _mm256_unpacklo_ps(r[k], r[k + 1]);
+      t[k + 1] = _mm256_unpackhi_ps(r[k], r[k + 1]);
+    }
+    for (int k = 0; k < 8; k += 4) {
+      u[k] = _mm256_shuffle_ps(t[k], t[k + 2], _MM_SHUFFLE(1, 0, 1, 0));
+      u[k + 1] = _mm256_shuffle_ps(t[k], t[k + 2], _MM_SHUFFLE(3, 2, 3, 2));
+      u[k + 2] = _mm256_shuffle_ps(t[k + 1], t[k + 3], _MM_SHUFFLE(1, 0, 1, 0));
+      u[k + 3] = _mm256_shuffle_ps(t[k + 1], t[k + 3], _MM_SHUFFLE(3, 2, 3, 2));
+    }
+    for (int k = 0; k < 4; ++k) {
+      _mm256_storeu_ps(rows + (block + k) * kLanes, _mm256_permute2f128_ps(u[k], u[k + 4], 0x20));
+      _mm256_storeu_ps(rows + (block + k + 4) * kLanes,
+                       _mm256_permute2f128_ps(u[k], u[k + 4], 0x31));
+    }
+  }
+}
+
 }  // namespace eight_lanes
 #pragma GCC pop_options
 #endif
@@ -84,6 +110,23 @@ void foldBounds(const RegionTerms& region, const FoldLanes& in, int count, float
   }
 #endif
   for (int l = 0; l < count; ++l) one_lane::foldBoundLanes(region, in, l, t);
+}
+
+void gatherNodes(const float* const nodes[kLanes], int count, NodeLanes& out, bool wide) {
+#ifdef MANYLIGHT_AVX2_LANES
+  if (wide && wideNodeBounds()) {
+    const float* all[kLanes];
+    for (int l = 0; l < kLanes; ++l) all[l] = nodes[l < count ? l : 0];
+    eight_lanes::gatherNodes(all, out);
+    return;
+  }
+#endif
+  float* rows = reinterpret_cast<float*>(&out);
+  for (int l = 0; l < kLanes; ++l) {
+    float node[kNodeRows];
+    std::memcpy(node, nodes[l < count ? l : 0], sizeof node);
+    for (int row = 0; row < kNodeRows; ++row) rows[row * kLanes + l] = node[row];
+  }
 }
 
 }  // namespace manylight

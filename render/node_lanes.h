@@ -13,15 +13,23 @@ namespace manylight {
 
 inline constexpr int kLanes = 8;
 
-// Up to kLanes nodes, one lane each (TileCutter::Node's fields), and for each whether its
+// Up to kLanes nodes, one lane each: kNodeRows rows of TileCutter::Node's fields, in the order
+// its first kNodeRows floats hold them (gatherNodes), then the tree, and whether the
 // representative's shading at the region's centre is known (its parent's, the same light).
 struct NodeLanes {
-  float tree[kLanes], leaf[kLanes];
   float boxMin[3][kLanes], boxMax[3][kLanes], intensity[3][kLanes], axis[3][kLanes];
   float invRange2[kLanes], w2[kLanes], sinTheta[kLanes];
   float repPoint[3][kLanes], repAxis[3][kLanes], repInvRange2[kLanes], repCos[kLanes];
+  float leaf[kLanes];  // 1 for a leaf
+  float tree[kLanes];
   float knownUnit[kLanes], unit[kLanes];  // 1: `unit` holds it
 };
+inline constexpr int kNodeRows = 24;
+
+// Rows [0, kNodeRows) of `out`'s lanes [0, count) from the first kNodeRows floats at each of
+// `nodes` (32-byte aligned; 1 ≤ count ≤ kLanes); lanes past `count` take lane 0's. Eight at once, a
+// transpose, where `wide` and the CPU has AVX2.
+void gatherNodes(const float* const nodes[kLanes], int count, NodeLanes& out, bool wide = true);
 
 // What the bounds need of the group of shading points and of the rule.
 struct RegionTerms {

@@ -112,28 +112,18 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
   thread_local NodeLanes lanes;
   BoundLanes bounds;
   auto flush = [&]() MANYLIGHT_INLINE {
+    if (waitingCount == 0) return;
+    const float* records[kLanes];
     for (int l = 0; l < waitingCount; ++l) {
       const Waiting& w = waiting[l];
       const Node& n = node(w.tree, w.index);
+      records[l] = &n.boxMin.x;
       lanes.tree[l] = float(w.tree);
-      lanes.leaf[l] = n.leaf ? 1.0f : 0.0f;
-      for (int c = 0; c < 3; ++c) {
-        lanes.boxMin[c][l] = n.boxMin[c];
-        lanes.boxMax[c][l] = n.boxMax[c];
-        lanes.intensity[c][l] = n.intensity[c];
-        lanes.axis[c][l] = n.axis[c];
-        lanes.repPoint[c][l] = n.repPoint[c];
-        lanes.repAxis[c][l] = n.repAxis[c];
-      }
-      lanes.invRange2[l] = n.invRange2;
-      lanes.w2[l] = n.w2;
-      lanes.sinTheta[l] = n.sinTheta;
-      lanes.repInvRange2[l] = n.repInvRange2;
-      lanes.repCos[l] = n.repCos;
       const bool known = w.parent && w.parent->representative == n.representative;
       lanes.knownUnit[l] = known ? 1.0f : 0.0f;
       lanes.unit[l] = known ? w.parent->unit : 0.0f;
     }
+    gatherNodes(records, waitingCount, lanes);
     nodeBounds(terms, lanes, waitingCount, bounds);
     for (int l = 0; l < waitingCount; ++l) {
       const Waiting& w = waiting[l];

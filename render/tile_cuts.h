@@ -150,16 +150,20 @@ class TileCutter {
 
  private:
   // A node as glsl/light_tree.glsl's fetchNode reads it, decoded once.
-  struct Node {
+  // Its first kNodeRows floats are NodeLanes' rows in order (render/node_lanes.h), so that
+  // eight nodes are gathered into lanes by transposing them.
+  struct alignas(32) Node {
     glm::vec3 boxMin, boxMax, intensity, axis{0.0f};
-    int representative;
     float invRange2, w2, sinTheta = 0.0f;
-    bool leaf;
     // Its representative's light, as its leaf holds it: position (direction), 1/range²; a
     // spot's axis (the way it shines) and cos θ, and its cone as the light texture holds it,
     // smoothstep(clamp(cos · scale + offset)) of the cosine to the axis.
     glm::vec3 repPoint{0.0f}, repAxis{0.0f};
-    float repInvRange2 = 0.0f, repCos = 0.0f, repConeScale = 0.0f, repConeOffset = 0.0f;
+    float repInvRange2 = 0.0f, repCos = 0.0f;
+    float leafRow;  // 1 for a leaf, else 0
+    int representative;
+    bool leaf;
+    float repConeScale = 0.0f, repConeOffset = 0.0f;
   };
   const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
   static Node decode(const PackedTrees& packed, int tree, int i);

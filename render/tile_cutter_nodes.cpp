@@ -1,9 +1,11 @@
 // TileCutter's nodes (render/tile_cuts.h): the packed trees decoded once, each node with
 // its representative's light beside it.
 #include <algorithm>
+#include <cstddef>
 
 #include "bake/light_pack.h"
 #include "bake/light_tree_layout.h"
+#include "render/node_lanes.h"
 #include "render/tile_cuts.h"
 
 namespace manylight {
@@ -50,6 +52,10 @@ TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& ligh
 }
 
 TileCutter::Node TileCutter::decode(const PackedTrees& packed, int tree, int i) {
+  // gatherNodes reads a node's first kNodeRows floats as NodeLanes' rows.
+  static_assert(offsetof(Node, leafRow) == (kNodeRows - 1) * sizeof(float) &&
+                offsetof(Node, repPoint) == offsetof(NodeLanes, repPoint) / kLanes &&
+                offsetof(Node, leafRow) == offsetof(NodeLanes, leaf) / kLanes);
   const std::uint32_t* w = packed.words.data() + packed.base[tree] +
                            std::size_t(tree == 2 ? layout::kSpotNodeWords : layout::kNodeWords) * i;
   Node n;
@@ -57,6 +63,7 @@ TileCutter::Node TileCutter::decode(const PackedTrees& packed, int tree, int i) 
   n.representative = int(w[3]);
   n.invRange2 = floatOf(w[7]);
   n.leaf = i >= packed.leaves[tree] - 1;
+  n.leafRow = n.leaf ? 1.0f : 0.0f;
   const glm::vec3 words46{floatOf(w[4]), floatOf(w[5]), floatOf(w[6])};
   n.boxMax = n.leaf ? n.boxMin : words46;
   n.intensity = n.leaf ? words46 : packed.colour.decode(w[8]);

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <vector>
 
 namespace manylight {
 namespace {
@@ -109,6 +110,32 @@ TEST(NodeLanes, EightLanesGiveOneLanesResultsBitForBit) {
   EXPECT_GT(leaves, 100);
   EXPECT_GT(bounded, 100);
   if (!wideNodeBounds()) std::printf("note: no AVX2 here; both ran one lane at a time\n");
+}
+
+// Nodes gathered into lanes by a transpose and one float at a time; lanes past the count
+// take lane 0's node.
+TEST(NodeLanes, GatheringByTransposeGivesTheSameLanes) {
+  struct alignas(32) Record {
+    float f[32];
+  };
+  std::vector<Record> records(kLanes);
+  for (int l = 0; l < kLanes; ++l) {
+    for (int k = 0; k < 32; ++k) records[std::size_t(l)].f[k] = float(100 * l + k);
+  }
+  const float* nodes[kLanes];
+  for (int l = 0; l < kLanes; ++l) nodes[l] = records[std::size_t(l)].f;
+  for (const int count : {kLanes, 5, 1}) {
+    NodeLanes wide{}, one{};
+    gatherNodes(nodes, count, wide, true);
+    gatherNodes(nodes, count, one, false);
+    EXPECT_EQ(std::memcmp(&wide, &one, sizeof wide), 0) << count;
+    for (int l = 0; l < kLanes; ++l) {
+      const int from = l < count ? l : 0;
+      EXPECT_EQ(one.boxMin[0][l], float(100 * from)) << count << " " << l;
+      EXPECT_EQ(one.repPoint[2][l], float(100 * from + 17)) << count << " " << l;
+      EXPECT_EQ(one.leaf[l], float(100 * from + 23)) << count << " " << l;
+    }
+  }
 }
 
 // The far field's linearisation bounds of entries, eight at once and one at a time.
