@@ -46,6 +46,8 @@
 
 namespace manylight {
 
+struct FarSums;
+
 inline constexpr int kFarFieldTexels = 13;
 
 class FarField {
@@ -63,6 +65,9 @@ class FarField {
   };
   // A spot entry: a point entry times its cone.
   void addSpot(glm::vec3 position, float invRange2, const Cone& cone, glm::vec3 intensity);
+  // Entries summed per lane by addFarField (render/node_lanes.h) about centre().
+  void add(const FarSums& sums, int entries);
+  glm::vec3 centre() const { return glm::vec3(centre_); }
   // The same linear function about another centre (exact: F + J (centre − c), J).
   FarField movedTo(glm::vec3 centre) const;
   // Its irradiance at its centre for unit normal n, per channel: n · F.
@@ -73,7 +78,7 @@ class FarField {
   void write(std::vector<std::uint32_t>& words) const;
 
  private:
-  void add(glm::vec3 position, float invRange2, const Cone* cone, glm::vec3 intensity);
+  void addOne(glm::vec3 position, float invRange2, const Cone* cone, glm::vec3 intensity);
 
   glm::dvec3 centre_;
   struct Channel {

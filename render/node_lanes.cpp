@@ -4,8 +4,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "render/cpu_clones.h"
-
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define MANYLIGHT_AVX2_LANES 1
 #include <immintrin.h>
@@ -50,6 +48,10 @@ void nodeBounds(const RegionTerms& region, const NodeLanes& in, BoundLanes& out)
 
 void foldBounds(const RegionTerms& region, const FoldLanes& in, float* t) {
   foldBoundLanes(region, in, 0, t);
+}
+
+void addFarField(glm::vec3 centre, const FarLanes& in, int count, FarSums& sums) {
+  farFieldLanes(centre, in, count, 0, sums);
 }
 
 // Eight rows of eight floats (one per node) into eight rows of eight lanes.
@@ -127,6 +129,16 @@ void gatherNodes(const float* const nodes[kLanes], int count, NodeLanes& out, bo
     std::memcpy(node, nodes[l < count ? l : 0], sizeof node);
     for (int row = 0; row < kNodeRows; ++row) rows[row * kLanes + l] = node[row];
   }
+}
+
+void addFarField(glm::vec3 centre, const FarLanes& in, int count, FarSums& sums, bool wide) {
+#ifdef MANYLIGHT_AVX2_LANES
+  if (wide && wideNodeBounds()) {
+    eight_lanes::addFarField(centre, in, count, sums);
+    return;
+  }
+#endif
+  for (int l = 0; l < count; ++l) one_lane::farFieldLanes(centre, in, count, l, sums);
 }
 
 }  // namespace manylight

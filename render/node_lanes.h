@@ -9,6 +9,13 @@
 
 #include "render/pixel_groups.h"
 
+// The lanes' helpers are inlined into each lane type's copy of the kernels.
+#if defined(__GNUC__)
+#define MANYLIGHT_INLINE __attribute__((always_inline))
+#else
+#define MANYLIGHT_INLINE
+#endif
+
 namespace manylight {
 
 inline constexpr int kLanes = 8;
@@ -67,5 +74,21 @@ struct FoldLanes {
 };
 void foldBounds(const RegionTerms& region, const FoldLanes& in, int count, float t[kLanes],
                 bool wide = true);
+
+// Up to kLanes point or spot entries folded into a far field (render/far_field.h), and the
+// sums of their terms per channel and lane: f(c) and Df(c) (by columns) times the intensity.
+struct FarLanes {
+  float position[3][kLanes], invRange2[kLanes];
+  float spot[kLanes];  // 1: a spot, whose cone follows
+  float coneAxis[3][kLanes], coneScale[kLanes], coneOffset[kLanes];
+  float intensity[3][kLanes];
+};
+struct FarSums {
+  float f[3][3][kLanes];  // [channel][component][lane]
+  float j[3][9][kLanes];  // [channel][3 · column + row][lane]
+};
+// Adds lanes [0, count) of `in` to `sums`, about `centre` (single precision; FarField::add
+// takes the sums over the lanes in double).
+void addFarField(glm::vec3 centre, const FarLanes& in, int count, FarSums& sums, bool wide = true);
 
 }  // namespace manylight

@@ -259,3 +259,70 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
       directional ? (directionalFront ? zero : splat(-1.0f)) : (folds ? bound : splat(-1.0f));
   store(out + l, result);
 }
+
+// Lanes [l, l + width of V) of `in`'s point and spot entries, those below `count`, added to
+// `sums`: per channel, the entry's f(c) and Df(c) times its intensity (render/far_field.h).
+MANYLIGHT_INLINE inline void farFieldLanes(glm::vec3 centre, const FarLanes& in, int count, int l,
+                                           FarSums& sums) {
+  const V zero = splat(0.0f);
+  V lane;  // each lane's index
+  {
+    float index[kLanes];
+    for (int k = 0; k < kLanes; ++k) index[k] = float(k);
+    lane = load(index + l);
+  }
+  const auto active = lane < float(count);
+  // f = γ v, Df = α v vᵀ + β I: v = p − c, s = |v|², W = (1 − x²)², x = a·s, W' = −4a·x(1 − x²)
+  // (0 for x ≥ 1), γ = W/r³, α = (3W/s − 2W')/r³, β = −W/r³.
+  V v[3];
+  for (int c = 0; c < 3; ++c) v[c] = load(in.position[c] + l) - centre[c];
+  const V s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const V r = vsqrt(s), invR3 = 1.0f / (s * r);
+  const V a = load(in.invRange2 + l), x = a * s;
+  const auto inRange = x < 1.0f;
+  const V w = inRange ? (1.0f - x * x) * (1.0f - x * x) : zero;
+  const V dw = inRange ? -4.0f * a * x * (1.0f - x * x) : zero;
+  const V alpha = (3.0f * w / s - 2.0f * dw) * invR3, beta = -w * invR3;
+  V value[3], jacobian[3][3];  // jacobian[column][row]
+  for (int c = 0; c < 3; ++c) value[c] = w * invR3 * v[c];
+  for (int col = 0; col < 3; ++col) {
+    for (int row = 0; row < 3; ++row) jacobian[col][row] = alpha * v[row] * v[col];
+    jacobian[col][col] = jacobian[col][col] + beta;
+  }
+  // A spot: S f with S = σ(t), t = clamp(k·(axis·u) + o, 0, 1), u = −v/r, σ(t) = t²(3 − 2t):
+  // D(S f) = S Df + f ∇Sᵀ, ∇S = σ'(t)·k·(axis − (axis·u) u)/r, σ' = 6t(1 − t) (0 where the
+  // clamp acts).
+  const auto spot = load(in.spot + l) != 0.0f;
+  V u[3], axis[3];
+  for (int c = 0; c < 3; ++c) {
+    u[c] = -v[c] / r;
+    axis[c] = load(in.coneAxis[c] + l);
+  }
+  const V cosine = axis[0] * u[0] + axis[1] * u[1] + axis[2] * u[2];
+  const V scale = load(in.coneScale + l);
+  const V tRaw = scale * cosine + load(in.coneOffset + l);
+  const V t = clampLanes(tRaw, 0.0f, 1.0f);
+  const V sigma = spot ? t * t * (3.0f - 2.0f * t) : splat(1.0f);
+  const V slope = spot && tRaw > 0.0f && tRaw < 1.0f ? 6.0f * t * (1.0f - t) : zero;
+  V gradient[3];
+  for (int c = 0; c < 3; ++c) gradient[c] = slope * scale * (axis[c] - cosine * u[c]) / r;
+  for (int col = 0; col < 3; ++col) {
+    for (int row = 0; row < 3; ++row)
+      jacobian[col][row] = sigma * jacobian[col][row] + value[row] * gradient[col];
+  }
+  for (int c = 0; c < 3; ++c) value[c] = sigma * value[c];
+  for (int ch = 0; ch < 3; ++ch) {
+    const V i = active ? load(in.intensity[ch] + l) : zero;
+    for (int k = 0; k < 3; ++k) {
+      const V term = active ? i * value[k] : zero;
+      store(sums.f[ch][k] + l, load(sums.f[ch][k] + l) + term);
+    }
+    for (int col = 0; col < 3; ++col) {
+      for (int row = 0; row < 3; ++row) {
+        const V term = active ? i * jacobian[col][row] : zero;
+        float* sum = sums.j[ch][3 * col + row] + l;
+        store(sum, load(sum) + term);
+      }
+    }
+  }
+}

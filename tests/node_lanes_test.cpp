@@ -138,6 +138,42 @@ TEST(NodeLanes, GatheringByTransposeGivesTheSameLanes) {
   }
 }
 
+// Far field terms of point and spot entries, eight at once and one at a time; lanes past the
+// count add nothing.
+TEST(NodeLanes, EightLanesGiveOneLanesFarFieldSumsBitForBit) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int round = 0; round < 2000; ++round) {
+    FarLanes in{};
+    for (int l = 0; l < kLanes; ++l) {
+      for (int c = 0; c < 3; ++c) {
+        in.position[c][l] = 3.0f * u(rng);
+        in.coneAxis[c][l] = u(rng);
+        in.intensity[c][l] = 1.0f + u(rng);
+      }
+      in.invRange2[l] = rng() % 2 ? 0.0f : 0.1f;
+      in.spot[l] = rng() % 2 ? 1.0f : 0.0f;
+      in.coneScale[l] = 4.0f * std::abs(u(rng));
+      in.coneOffset[l] = u(rng);
+    }
+    const glm::vec3 centre(u(rng), u(rng), u(rng));
+    const int count = 1 + round % kLanes;
+    FarSums wide{}, one{};
+    addFarField(centre, in, count, wide, true);
+    addFarField(centre, in, count, one, false);
+    ASSERT_EQ(std::memcmp(&wide, &one, sizeof wide), 0) << "round " << round;
+    for (int l = count; l < kLanes; ++l) EXPECT_EQ(one.f[0][0][l], 0.0f);
+    for (int l = 0; l < count; ++l) {  // a point light with no range adds I v/|v|³
+      if (in.spot[l] == 0.0f && in.invRange2[l] == 0.0f) {
+        const glm::vec3 v =
+            glm::vec3(in.position[0][l], in.position[1][l], in.position[2][l]) - centre;
+        const float expected = in.intensity[1][l] * v.y / std::pow(glm::length(v), 3.0f);
+        EXPECT_NEAR(one.f[1][1][l], expected, 1e-5f * std::abs(expected)) << round << " " << l;
+      }
+    }
+  }
+}
+
 // The far field's linearisation bounds of entries, eight at once and one at a time.
 TEST(NodeLanes, EightLanesGiveOneLanesFoldBoundsBitForBit) {
   std::mt19937 rng(11);
