@@ -397,7 +397,8 @@ bool tileCut() {
   uvec4 check = texelFetch(uTileCuts, 2 * int(c) + 1);
   vec3 bound = s.albedo * uintBitsToFloat(check.xyz);
   ivec3 counts = ivec3(head.yzw);
-  int folded = int(check.w);
+  int folded = int(check.w & 0xffffu);
+  int zeros = int(check.w >> 16u);  // entries left out: nothing at any pixel of the group
   vec3 sum = vec3(0.0);
   int k;
   int first = int(head.x);
@@ -422,7 +423,7 @@ bool tileCut() {
   bool holds = ruleHolds(maxOf(bound), bound, sum);
   if (holds) {
     estimateSum = sum;
-    cutSize = count + folded;
+    cutSize = count + folded + zeros;
   }
   return holds;
 }

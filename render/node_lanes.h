@@ -65,7 +65,9 @@ bool wideNodeBounds();  // whether `wide` takes eight lanes at once here
 
 // Up to kLanes entries of a cut (their representatives' lights), one lane each, and their far
 // field linearisation bounds T (render/far_field.h) per unit albedo and intensity over the
-// region, or −1 where they do not fold.
+// region, or where they do not fold −1, kZeroEntry (nothing at any point of the region), or
+// kFullCone (a spot whose cone lets all its light through to the whole region).
+inline constexpr float kZeroEntry = -2.0f, kFullCone = -3.0f;
 struct FoldLanes {
   float tree[kLanes];
   float repPoint[3][kLanes], repAxis[3][kLanes], repInvRange2[kLanes];

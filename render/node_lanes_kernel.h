@@ -255,8 +255,26 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
   second = spot && varies ? second + coneTerm : second;
   const V bound = 0.5f * second * r.h2 / kPi;
   const auto folds = pointFront && !(spot && hardEdge) && vabs(bound) <= 3.40282347e+38f;
-  const V result =
-      directional ? (directionalFront ? zero : splat(-1.0f)) : (folds ? bound : splat(-1.0f));
+
+  // Entries that give nothing at any point of the region (kZeroEntry): the light behind every
+  // normal (its direction at least 90° + γ from the axis: the box's sphere seen from it, for a
+  // point or spot), out of range of the nearest point, or a spot whose cone (smoothstep) is 0
+  // towards the whole region; and spots whose cone is 1 towards all of it (kFullCone).
+  const auto directionalBehind =
+      g.cosSpread > 0.0f &&
+      g.axis.x * rep[0] + g.axis.y * rep[1] + g.axis.z * rep[2] <= -g.sinSpread;
+  const auto behind = g.cosSpread > 0.0f && !(d2Centre <= r2) && d2Min > 0.0f &&
+                      cosT * cosA + sinT * sinA <= -g.sinSpread;
+  const auto outOfRange = a > 0.0f && d2Min * a >= 1.0f;
+  const auto dark = spot && !hardEdge && t1 <= 0.0f;
+  const auto fullCone = spot && !hardEdge && t0 >= 1.0f;
+  const V result = directional                      ? (directionalFront    ? zero
+                                                       : directionalBehind ? splat(kZeroEntry)
+                                                                           : splat(-1.0f))
+                   : (behind || outOfRange || dark) ? splat(kZeroEntry)
+                   : folds                          ? bound
+                   : fullCone                       ? splat(kFullCone)
+                                                    : splat(-1.0f);
   store(out + l, result);
 }
 

@@ -25,10 +25,11 @@ std::size_t RegionCut::entryTexels() const {
 }
 
 void RegionCut::writeHeader(std::uint32_t firstEntryTexel, std::uint32_t* words) const {
-  const std::uint32_t header[8] = {firstEntryTexel,          std::uint32_t(counts[0]),
-                                   std::uint32_t(counts[1]), std::uint32_t(counts[2]),
-                                   layout::wordOf(check.x),  layout::wordOf(check.y),
-                                   layout::wordOf(check.z),  std::uint32_t(folded)};
+  const std::uint32_t header[8] = {
+      firstEntryTexel,          std::uint32_t(counts[0]),
+      std::uint32_t(counts[1]), std::uint32_t(counts[2]),
+      layout::wordOf(check.x),  layout::wordOf(check.y),
+      layout::wordOf(check.z),  std::uint32_t(folded) | std::uint32_t(zeros) << 16};
   std::copy_n(header, 8, words);
 }
 

@@ -236,13 +236,18 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
   // T for kLanes entries at once (render/node_lanes.h); lanes past a batch's count keep
   // earlier entries: evaluated, never read.
   thread_local FoldLanes lights;
+  thread_local std::vector<float> shape;  // per item that does not fold: foldBounds' answer
+  shape.assign(items.size(), -1.0f);
   int batch[kLanes], batchCount = 0;
   auto foldBatch = [&]() MANYLIGHT_INLINE {
     float t[kLanes];
     foldBounds(terms, lights, batchCount, t);
     for (int b = 0; b < batchCount; ++b) {
-      if (t[b] >= 0.0f)
+      if (t[b] >= 0.0f) {
         foldable.push_back({batch[b], items[std::size_t(batch[b])].intensity * t[b]});
+      } else {
+        shape[std::size_t(batch[b])] = t[b];  // kZeroEntry, kFullCone or −1
+      }
     }
     batchCount = 0;
   };
@@ -327,14 +332,22 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
       next->nodes.push_back({it.tree, it.index});
       continue;
     }
+    // An entry that gives nothing anywhere in the group is left out (its bound stays in
+    // the check); a spot whose cone is 1 towards all of the group is written as a point.
+    const float entryShape = shape[std::size_t(k)];
+    if (entryShape == kZeroEntry) {
+      ++result.zeros;
+      continue;
+    }
+    const int tree = entryShape == kFullCone ? 1 : it.tree;
     // The representative itself: direction or position, and 1/range²; a spot's cone; the
     // node's intensity.
-    std::vector<std::uint32_t>& e = byTree[it.tree];
+    std::vector<std::uint32_t>& e = byTree[tree];
     for (const float w :
          {l.repPoint.x, l.repPoint.y, l.repPoint.z, it.tree == 0 ? 0.0f : l.repInvRange2})
       e.push_back(layout::wordOf(w));
     float coneOffset = 0.0f;
-    if (it.tree == 2) {
+    if (tree == 2) {
       for (const float w : {l.repAxis.x, l.repAxis.y, l.repAxis.z, l.repConeScale})
         e.push_back(layout::wordOf(w));
       coneOffset = l.repConeOffset;

@@ -63,11 +63,16 @@ struct CutRule {
 //   texel 2c      cut c: its first entry texel, then the number of entries of the
 //                 directional, point and spot trees, in that order
 //   texel 2c + 1  U (node rule) or B (total rule) per unit albedo, as float bits; how many
-//                 entries the far field holds
+//                 entries the far field holds (low 16 bits) and how many were left out
+//                 because they give nothing at any pixel of the group (high 16 bits: a spot
+//                 whose cone turns away from all of it, a light behind every normal or out
+//                 of range of the nearest pixel)
 //   from texel 2·cuts: each cut's far field (render/far_field.h: kFarFieldTexels texels,
 //     when it holds any entry), then its entries, directional, point, spot, as float bits:
 //     directional, point: 2 texels, the representative's direction towards it (or
 //                         position) and 1/range² (0: none), then the node's intensity RGB, 0
+//                         (a spot whose cone lets all its light through to the whole group
+//                         is written as a point)
 //     spot:               3 texels: the representative's position and 1/range², its
 //                         axis and cone scale, the node's intensity RGB and the cone
 //                         offset (as the light texture holds them)
@@ -91,6 +96,7 @@ inline constexpr std::uint32_t kNoSharedCut = 0xffffffffu;
 struct RegionCut {
   int counts[3] = {0, 0, 0};  // entries per tree, besides the far field
   int folded = 0;             // entries in the far field
+  int zeros = 0;              // entries left out: nothing at any pixel of the group
   glm::vec3 check{0.0f};      // U (node rule) or B (total rule) per unit albedo
   bool perPixel = false;      // full: the group's pixels cut for themselves
   long long bounds = 0;       // node bounds evaluated

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -174,11 +175,56 @@ TEST(NodeLanes, EightLanesGiveOneLanesFarFieldSumsBitForBit) {
   }
 }
 
-// The far field's linearisation bounds of entries, eight at once and one at a time.
+// Checks lane l of `in`, which foldBounds called kZeroEntry or kFullCone, at points and
+// normals of the region: its light gives nothing (max(n·v, 0) · window · cone is 0), or its
+// spot cone is 1.
+void checkShape(const RegionTerms& r, const FoldLanes& in, int l, float shape, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const glm::dvec3 rep(in.repPoint[0][l], in.repPoint[1][l], in.repPoint[2][l]);
+  const glm::dvec3 axis(in.repAxis[0][l], in.repAxis[1][l], in.repAxis[2][l]);
+  const glm::dvec3 mean(r.g.axis);
+  for (int sample = 0; sample < 64; ++sample) {
+    const glm::dvec3 p =
+        glm::mix(glm::dvec3(r.g.pMin), glm::dvec3(r.g.pMax), glm::dvec3(u(rng), u(rng), u(rng)));
+    glm::dvec3 n = mean;  // a normal within the region's spread of its axis
+    for (int tries = 0; tries < 100; ++tries) {
+      const glm::dvec3 m =
+          glm::normalize(mean + 2.0 * glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+      if (glm::dot(m, mean) >= double(r.g.cosSpread)) {
+        n = m;
+        break;
+      }
+    }
+    double value;
+    if (in.tree[l] == 0.0f) {
+      value = std::max(glm::dot(n, rep), 0.0);
+    } else {
+      const glm::dvec3 v = rep - p;
+      const double d2 = glm::dot(v, v), x = d2 * in.repInvRange2[l];
+      const double window = std::pow(std::clamp(1.0 - x * x, 0.0, 1.0), 2.0);
+      double cone = 1.0;
+      if (in.tree[l] == 2.0f) {
+        const double t = std::clamp(
+            glm::dot(-v / std::sqrt(d2), axis) * in.coneScale[l] + in.coneOffset[l], 0.0, 1.0);
+        cone = t * t * (3.0 - 2.0 * t);
+        if (shape == kFullCone) {
+          EXPECT_EQ(cone, 1.0);
+          continue;
+        }
+      }
+      value = std::max(glm::dot(n, v), 0.0) * window * cone;
+    }
+    ASSERT_EQ(value, 0.0) << "tree " << in.tree[l] << " sample " << sample;
+  }
+}
+
+// The far field's linearisation bounds of entries, eight at once and one at a time; the
+// entries it calls kZeroEntry give nothing anywhere in the region, and kFullCone spots have
+// their cone at 1 there.
 TEST(NodeLanes, EightLanesGiveOneLanesFoldBoundsBitForBit) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  int folds = 0, unfolded = 0, spotsFolded = 0;
+  int folds = 0, unfolded = 0, spotsFolded = 0, zeros = 0, fullCones = 0;
   for (int round = 0; round < 4000; ++round) {
     const RegionTerms region = randomRegion(rng, false);
     FoldLanes in{};
@@ -187,6 +233,15 @@ TEST(NodeLanes, EightLanesGiveOneLanesFoldBoundsBitForBit) {
       for (int c = 0; c < 3; ++c) {
         in.repPoint[c][l] = 3.0f * u(rng);
         in.repAxis[c][l] = u(rng);
+      }
+      const glm::vec3 axis =
+          glm::normalize(glm::vec3(in.repAxis[0][l], in.repAxis[1][l], in.repAxis[2][l]) +
+                         glm::vec3(0.0f, 0.01f, 0.0f));
+      for (int c = 0; c < 3; ++c) in.repAxis[c][l] = axis[c];
+      if (in.tree[l] == 0.0f) {  // a directional light: the unit vector towards it
+        const glm::vec3 d =
+            glm::normalize(glm::vec3(in.repPoint[0][l], in.repPoint[1][l], in.repPoint[2][l]));
+        for (int c = 0; c < 3; ++c) in.repPoint[c][l] = d[c];
       }
       in.repInvRange2[l] = rng() % 2 ? 0.0f : 0.05f;
       in.repCos[l] = std::abs(u(rng));
@@ -199,6 +254,12 @@ TEST(NodeLanes, EightLanesGiveOneLanesFoldBoundsBitForBit) {
     foldBounds(region, in, kLanes, one, false);
     ASSERT_EQ(std::memcmp(wide, one, sizeof wide), 0) << "round " << round;
     for (int l = 0; l < kLanes; ++l) {
+      if (one[l] == kZeroEntry || one[l] == kFullCone) {
+        // Sampled over the region's points and normals: nothing, or the cone at 1.
+        ++(one[l] == kZeroEntry ? zeros : fullCones);
+        checkShape(region, in, l, one[l], rng);
+        continue;
+      }
       if (one[l] < 0.0f) {
         EXPECT_EQ(one[l], -1.0f);
         ++unfolded;
@@ -215,6 +276,8 @@ TEST(NodeLanes, EightLanesGiveOneLanesFoldBoundsBitForBit) {
   EXPECT_GT(folds, 1000);
   EXPECT_GT(unfolded, 1000);
   EXPECT_GT(spotsFolded, 100);
+  EXPECT_GT(zeros, 100);
+  EXPECT_GT(fullCones, 100);
 }
 
 }  // namespace

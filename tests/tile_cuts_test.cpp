@@ -126,7 +126,7 @@ Checked checkCuts(const SyntheticGBuffer& g, const std::vector<Light>& lights,
       for (const Light& l : lights)
         exact += unitRadiance(l, p, n) * glm::dvec3(l.colour) * double(l.intensity);
       const std::uint32_t* e = cuts.texels.data() + std::size_t(head[0]) * 4;
-      if (head[7] > 0) {
+      if ((head[7] & 0xffffu) > 0) {  // far field entries (high 16 bits: entries left out)
         estimate += farFieldIrradiance(e, p, n) / shading::kPi;
         e += 4 * kFarFieldTexels;
         ++c.farFieldPixels;
