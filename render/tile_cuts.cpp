@@ -106,7 +106,7 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
   };
   Waiting waiting[kLanes];
   int waitingCount = 0;
-  // Lanes past a batch's count keep earlier nodes: evaluated, never read.
+  // Lanes past a batch's count hold lane 0's node or earlier values: evaluated, never read.
   thread_local NodeLanes lanes;
   BoundLanes bounds;
   auto flush = [&]() MANYLIGHT_INLINE {
@@ -233,8 +233,9 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
   };
   thread_local std::vector<Foldable> foldable;
   foldable.clear();
-  // T for kLanes entries at once (render/node_lanes.h); lanes past a batch's count keep
-  // earlier entries: evaluated, never read.
+  // T for kLanes entries at once (render/node_lanes.h), or that an entry gives nothing in
+  // the group (left out below) or is a spot with its cone at 1 (written as a point); lanes
+  // past a batch's count keep earlier entries: evaluated, never read.
   thread_local FoldLanes lights;
   thread_local std::vector<float> shape;  // per item that does not fold: foldBounds' answer
   shape.assign(items.size(), -1.0f);
