@@ -22,6 +22,76 @@ MANYLIGHT_INLINE inline V windowLanes(V d2, V invRange2) {
 
 MANYLIGHT_INLINE inline V maxOfLanes(const V v[3]) { return vmax(v[0], vmax(v[1], v[2])); }
 
+using Mask = decltype(splat(0.0f) < splat(0.0f));
+
+// The box [dMin, dMax] of vectors from the region's points to a node's box or a light (for
+// a directional node: its directions), with its nearest and farthest squared lengths.
+struct VectorBox {
+  V dMin[3], dMax[3];
+  V d2Min, d2Max;
+};
+MANYLIGHT_INLINE inline VectorBox vectorBox(const V dMin[3], const V dMax[3]) {
+  const V zero = splat(0.0f);
+  VectorBox b;
+  V nearest[3], farthest[3];
+  for (int c = 0; c < 3; ++c) {
+    b.dMin[c] = dMin[c];
+    b.dMax[c] = dMax[c];
+    nearest[c] = vmin(vmax(zero, dMin[c]), dMax[c]);
+    farthest[c] = vmax(vabs(dMin[c]), vabs(dMax[c]));
+  }
+  b.d2Min = nearest[0] * nearest[0] + nearest[1] * nearest[1] + nearest[2] * nearest[2];
+  b.d2Max = farthest[0] * farthest[0] + farthest[1] * farthest[1] + farthest[2] * farthest[2];
+  return b;
+}
+
+// The bounding sphere of a VectorBox seen along `axis`: ψ (cosT, sinT) the angle from the
+// axis to its centre, α (sinA, cosA) its angular radius; `inside` where it holds the origin.
+// cos(ψ − α) is then the largest cosine to the axis over the sphere (where ψ ≥ α) and
+// cos(ψ + α) the smallest.
+struct SphereAngles {
+  V cosT, sinT, sinA, cosA;
+  Mask inside;
+};
+MANYLIGHT_INLINE inline SphereAngles sphereAngles(glm::vec3 axis, const VectorBox& b) {
+  V centre[3], extent[3];
+  for (int c = 0; c < 3; ++c) {
+    centre[c] = 0.5f * (b.dMin[c] + b.dMax[c]);
+    extent[c] = b.dMax[c] - b.dMin[c];
+  }
+  const V r2 = 0.25f * (extent[0] * extent[0] + extent[1] * extent[1] + extent[2] * extent[2]);
+  const V d2Centre = centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2];
+  SphereAngles s;
+  s.inside = d2Centre <= r2;
+  s.cosT = (axis.x * centre[0] + axis.y * centre[1] + axis.z * centre[2]) / vsqrt(d2Centre);
+  s.sinT = vsqrt(vmax(1.0f - s.cosT * s.cosT, splat(0.0f)));
+  s.sinA = vsqrt(r2 / d2Centre);
+  s.cosA = vsqrt(1.0f - s.sinA * s.sinA);
+  return s;
+}
+// cos(ψ + α)⁺, 0 from inside: the smallest cosine over the sphere.
+MANYLIGHT_INLINE inline V sphereLower(const SphereAngles& s) {
+  const V zero = splat(0.0f);
+  return s.inside ? zero : vmax(s.cosT * s.cosA - s.sinT * s.sinA, zero);
+}
+
+// The smallest cosine to `axis` over the box itself: (min of axis · v) / (farthest length),
+// 0 where some vector of the box is at 90° or more.
+MANYLIGHT_INLINE inline V boxLower(glm::vec3 axis, const VectorBox& b) {
+  V m[3];
+  for (int c = 0; c < 3; ++c) m[c] = vmin(axis[c] * b.dMin[c], axis[c] * b.dMax[c]);
+  const V num = m[0] + m[1] + m[2];
+  return num > 0.0f ? vmin(num / vsqrt(b.d2Max), splat(1.0f)) : splat(0.0f);
+}
+
+// cos(min(θ + γ, π/2))⁺ for θ = acos(c), γ the spread of the region's normals about their
+// axis: the smallest cosine to any of them.
+MANYLIGHT_INLINE inline V widenDown(V c, const ShadingRegion& g) {
+  if (g.cosSpread <= 0.0f) return splat(0.0f);
+  c = clampLanes(c, 0.0f, 1.0f);
+  return vmax(c * g.cosSpread - vsqrt(1.0f - c * c) * g.sinSpread, splat(0.0f));
+}
+
 // Lanes [l, l + width of V) of `out`.
 MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLanes& in, int l,
                                             BoundLanes& out) {
@@ -63,35 +133,17 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
     dMin[c] = directional ? bMin : bMin - g.pMax[c];
     dMax[c] = directional ? bMax : bMax - g.pMin[c];
   }
-  V nearest[3], farthest[3];
-  for (int c = 0; c < 3; ++c) {
-    nearest[c] = vmin(vmax(zero, dMin[c]), dMax[c]);
-    farthest[c] = vmax(vabs(dMin[c]), vabs(dMax[c]));
-  }
-  const V d2Min = nearest[0] * nearest[0] + nearest[1] * nearest[1] + nearest[2] * nearest[2];
-  const V d2Max = farthest[0] * farthest[0] + farthest[1] * farthest[1] + farthest[2] * farthest[2];
+  const VectorBox box = vectorBox(dMin, dMax);
+  const V d2Min = box.d2Min, d2Max = box.d2Max;
   const auto touching = !directional && d2Min == 0.0f;  // unbounded
   const V dist = vsqrt(d2Min);
 
   // The largest and smallest cosine to the region's axis over the bounding sphere of the box
-  // of vectors [dMin, dMax].
-  V centre[3], extent[3];
-  for (int c = 0; c < 3; ++c) {
-    centre[c] = 0.5f * (dMin[c] + dMax[c]);
-    extent[c] = dMax[c] - dMin[c];
-  }
-  const V r2 = 0.25f * (extent[0] * extent[0] + extent[1] * extent[1] + extent[2] * extent[2]);
-  const V d2Centre = centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2];
-  const auto inside = d2Centre <= r2;
-  const V cosT =
-      (g.axis.x * centre[0] + g.axis.y * centre[1] + g.axis.z * centre[2]) / vsqrt(d2Centre);
-  const V sinT = vsqrt(vmax(1.0f - cosT * cosT, zero));
-  const V sinA = vsqrt(r2 / d2Centre);
-  const V cosA = vsqrt(1.0f - sinA * sinA);
-  V sphereUpper = cosT >= cosA ? one : cosT * cosA + sinT * sinA;
-  V sphereLower = vmax(cosT * cosA - sinT * sinA, zero);
-  sphereUpper = inside ? one : sphereUpper;
-  sphereLower = inside ? zero : sphereLower;
+  // of vectors.
+  const SphereAngles sphere = sphereAngles(g.axis, box);
+  V sphereUpper =
+      sphere.cosT >= sphere.cosA ? one : sphere.cosT * sphere.cosA + sphere.sinT * sphere.sinA;
+  sphereUpper = sphere.inside ? one : sphereUpper;
 
   // The largest cosine over the box itself, then widened by the spread γ of the region's
   // normals about their axis: cos(max(θ − γ, 0)).
@@ -144,16 +196,8 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   for (int c = 0; c < 3; ++c) upper[c] = lit ? (intensity[c] + slack) * upperScale : zero;
   const auto unbounded = touching || (lit && !(vabs(maxOfLanes(upper)) <= 3.40282347e+38f));
   if (r.total) {
-    // The smallest cosine over the box (or its sphere), narrowed by the normals' spread:
-    // cos(min(θ + γ, π/2))⁺.
-    for (int c = 0; c < 3; ++c) m[c] = vmin(g.axis[c] * dMin[c], g.axis[c] * dMax[c]);
-    const V numLow = m[0] + m[1] + m[2];
-    V cosLow = zero;
-    if (g.cosSpread > 0.0f) {
-      const V boxLower = numLow > 0.0f ? vmin(numLow / vsqrt(d2Max), one) : zero;
-      const V c = clampLanes(vmax(boxLower, sphereLower), 0.0f, 1.0f);
-      cosLow = vmax(c * g.cosSpread - vsqrt(1.0f - c * c) * g.sinSpread, zero);
-    }
+    // The smallest cosine over the box (or its sphere), narrowed by the normals' spread.
+    const V cosLow = widenDown(vmax(boxLower(g.axis, box), sphereLower(sphere)), g);
     const V lowerScale = cosLow * gLow / kPi;
     const auto on = lit && gLow > 0.0f;
     for (int c = 0; c < 3; ++c)
@@ -183,41 +227,22 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
     rep[c] = load(in.repPoint[c] + l);
     axis[c] = load(in.repAxis[c] + l);
   }
-  // cos(min(θ + γ, π/2))⁺ for θ = acos(c): the smallest cosine to any normal of the region.
-  auto widenDown = [&](V c) MANYLIGHT_INLINE {
-    if (g.cosSpread <= 0.0f) return zero;
-    c = clampLanes(c, 0.0f, 1.0f);
-    return vmax(c * g.cosSpread - vsqrt(1.0f - c * c) * g.sinSpread, zero);
-  };
   // A directional light: in front of every normal.
   const auto directionalFront =
-      widenDown(g.axis.x * rep[0] + g.axis.y * rep[1] + g.axis.z * rep[2]) > 0.0f;
+      widenDown(g.axis.x * rep[0] + g.axis.y * rep[1] + g.axis.z * rep[2], g) > 0.0f;
 
   // A point or spot light: in front of every point (the smallest cosine over the box of
   // vectors from the region to the light, as in nodeBoundLanes).
-  V dMin[3], dMax[3], nearest[3], farthest[3], centre[3], extent[3], m[3];
+  V dMin[3], dMax[3];
   for (int c = 0; c < 3; ++c) {
     dMin[c] = rep[c] - g.pMax[c];
     dMax[c] = rep[c] - g.pMin[c];
-    nearest[c] = vmin(vmax(zero, dMin[c]), dMax[c]);
-    farthest[c] = vmax(vabs(dMin[c]), vabs(dMax[c]));
-    centre[c] = 0.5f * (dMin[c] + dMax[c]);
-    extent[c] = dMax[c] - dMin[c];
-    m[c] = vmin(g.axis[c] * dMin[c], g.axis[c] * dMax[c]);
   }
-  const V d2Min = nearest[0] * nearest[0] + nearest[1] * nearest[1] + nearest[2] * nearest[2];
-  const V d2Max = farthest[0] * farthest[0] + farthest[1] * farthest[1] + farthest[2] * farthest[2];
-  const V r2 = 0.25f * (extent[0] * extent[0] + extent[1] * extent[1] + extent[2] * extent[2]);
-  const V d2Centre = centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2];
-  const V cosT =
-      (g.axis.x * centre[0] + g.axis.y * centre[1] + g.axis.z * centre[2]) / vsqrt(d2Centre);
-  const V sinT = vsqrt(vmax(1.0f - cosT * cosT, zero));
-  const V sinA = vsqrt(r2 / d2Centre);
-  const V cosA = vsqrt(1.0f - sinA * sinA);
-  const V sphereLower = d2Centre <= r2 ? zero : vmax(cosT * cosA - sinT * sinA, zero);
-  const V num = m[0] + m[1] + m[2];
-  const V boxLower = num > 0.0f ? vmin(num / vsqrt(d2Max), one) : zero;
-  const auto pointFront = d2Min > 0.0f && widenDown(vmax(boxLower, sphereLower)) > 0.0f;
+  const VectorBox box = vectorBox(dMin, dMax);
+  const V d2Min = box.d2Min;
+  const SphereAngles sphere = sphereAngles(g.axis, box);
+  const auto pointFront =
+      d2Min > 0.0f && widenDown(vmax(boxLower(g.axis, box), sphereLower(sphere)), g) > 0.0f;
 
   // A spot's cone over the region: the lowest and highest cosine between its axis and a
   // direction from the light to the region's bounding sphere (−1 and 1 from inside it), then
@@ -263,8 +288,8 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
   const auto directionalBehind =
       g.cosSpread > 0.0f &&
       g.axis.x * rep[0] + g.axis.y * rep[1] + g.axis.z * rep[2] <= -g.sinSpread;
-  const auto behind = g.cosSpread > 0.0f && !(d2Centre <= r2) && d2Min > 0.0f &&
-                      cosT * cosA + sinT * sinA <= -g.sinSpread;
+  const auto behind = g.cosSpread > 0.0f && !sphere.inside && d2Min > 0.0f &&
+                      sphere.cosT * sphere.cosA + sphere.sinT * sphere.sinA <= -g.sinSpread;
   const auto outOfRange = a > 0.0f && d2Min * a >= 1.0f;
   const auto dark = spot && !hardEdge && t1 <= 0.0f;
   const auto fullCone = spot && !hardEdge && t0 >= 1.0f;
