@@ -28,6 +28,8 @@ constexpr float kFoldMargin = 0.75f;
 // mixed, uniform and clustered lights the cuts and images are the same as without, and
 // 6% fewer bounds are evaluated).
 constexpr float kHopeless = 4.0f;
+// An entry folded into the far field (beside foldBounds' kZeroEntry and kFullCone).
+constexpr float kFolded = 1.0f;
 
 float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
@@ -133,7 +135,7 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
                {bounds.error[0][l], bounds.error[1][l], bounds.error[2][l]},
                {bounds.estimate[0][l], bounds.estimate[1][l], bounds.estimate[2][l]},
                bounds.dark[l] != 0.0f,
-               n.leaf,
+               n.leaf(),
                n.representative,
                bounds.unit[l],
                n.intensity});
@@ -237,7 +239,9 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
   // the group (left out below) or is a spot with its cone at 1 (written as a point); lanes
   // past a batch's count keep earlier entries: evaluated, never read.
   thread_local FoldLanes lights;
-  thread_local std::vector<float> shape;  // per item that does not fold: foldBounds' answer
+  // Per item: kFolded once it is folded below, else foldBounds' answer where it cannot fold
+  // (kZeroEntry, kFullCone), else −1.
+  thread_local std::vector<float> shape;
   shape.assign(items.size(), -1.0f);
   int batch[kLanes], batchCount = 0;
   auto foldBatch = [&]() MANYLIGHT_INLINE {
@@ -272,8 +276,6 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
     if (batchCount == kLanes) foldBatch();
   }
   if (batchCount > 0) foldBatch();
-  thread_local std::vector<bool> folded;
-  folded.assign(items.size(), false);
   result.check = rule.total ? result.check + farCheck : glm::max(result.check, farCheck);
   if (rule.total) {
     std::sort(foldable.begin(), foldable.end());
@@ -282,7 +284,7 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
       if (maxOf(b) > kFoldMargin * rule.error * maxOf(sum - b)) break;
       result.check = b;
       farCheck += f.t + items[std::size_t(f.item)].error;
-      folded[std::size_t(f.item)] = true;
+      shape[std::size_t(f.item)] = kFolded;
     }
   } else {
     for (const Foldable& f : foldable) {
@@ -290,7 +292,7 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
       if (maxOf(b) > kMargin * rule.error * maxOf(sum)) continue;
       result.check = glm::max(result.check, b);
       farCheck = glm::max(farCheck, b);
-      folded[std::size_t(f.item)] = true;
+      shape[std::size_t(f.item)] = kFolded;
     }
   }
 
@@ -311,7 +313,8 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
     const Item& it = items[std::size_t(k)];
     if (it.dark) continue;  // contributes nothing anywhere in the tile
     const Node& l = node(it.tree, it.index);
-    if (folded[std::size_t(k)]) {
+    const float entryShape = shape[std::size_t(k)];
+    if (entryShape == kFolded) {
       if (it.tree == 0) {
         far.addDirectional(l.repPoint, it.intensity);
         continue;
@@ -335,7 +338,6 @@ RegionCut TileCutter::cutRegion(const ShadingRegion& g, const CutRule& rule, boo
     }
     // An entry that gives nothing anywhere in the group is left out (its bound stays in
     // the check); a spot whose cone is 1 towards all of the group is written as a point.
-    const float entryShape = shape[std::size_t(k)];
     if (entryShape == kZeroEntry) {
       ++result.zeros;
       continue;

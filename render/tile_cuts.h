@@ -168,8 +168,8 @@ class TileCutter {
     float repInvRange2 = 0.0f, repCos = 0.0f;
     float leafRow;  // 1 for a leaf, else 0
     int representative;
-    bool leaf;
     float repConeScale = 0.0f, repConeOffset = 0.0f;
+    bool leaf() const { return leafRow != 0.0f; }
   };
   const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
   static Node decode(const PackedTrees& packed, int tree, int i);

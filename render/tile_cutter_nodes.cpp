@@ -62,11 +62,11 @@ TileCutter::Node TileCutter::decode(const PackedTrees& packed, int tree, int i) 
   n.boxMin = {floatOf(w[0]), floatOf(w[1]), floatOf(w[2])};
   n.representative = int(w[3]);
   n.invRange2 = floatOf(w[7]);
-  n.leaf = i >= packed.leaves[tree] - 1;
-  n.leafRow = n.leaf ? 1.0f : 0.0f;
+  const bool leaf = i >= packed.leaves[tree] - 1;
+  n.leafRow = leaf ? 1.0f : 0.0f;
   const glm::vec3 words46{floatOf(w[4]), floatOf(w[5]), floatOf(w[6])};
-  n.boxMax = n.leaf ? n.boxMin : words46;
-  n.intensity = n.leaf ? words46 : packed.colour.decode(w[8]);
+  n.boxMax = leaf ? n.boxMin : words46;
+  n.intensity = leaf ? words46 : packed.colour.decode(w[8]);
   n.w2 = floatOf(w[9]);
   if (tree == 2) {
     n.axis = {floatOf(w[10]), floatOf(w[11]), floatOf(w[12])};
