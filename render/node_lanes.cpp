@@ -55,7 +55,9 @@ void addFarField(glm::vec3 centre, const FarLanes& in, int count, FarSums& sums)
 }
 
 // Eight rows of eight floats (one per node) into eight rows of eight lanes.
-void gatherNodes(const float* const nodes[kLanes], NodeLanes& out) {
+void gatherNodes(const float* const given[kLanes], int count, NodeLanes& out) {
+  const float* nodes[kLanes];
+  for (int l = 0; l < kLanes; ++l) nodes[l] = given[l < count ? l : 0];
   float* rows = reinterpret_cast<float*>(&out);
   for (int block = 0; block < kNodeRows; block += 8) {
     __m256 r[8];
@@ -92,37 +94,32 @@ bool wideNodeBounds() {
 #endif
 }
 
+// In the functions below: where `wide` is asked for and the CPU has AVX2, calls
+// eight_lanes::`call` and returns; else they go on one lane at a time.
+#ifdef MANYLIGHT_AVX2_LANES
+#define MANYLIGHT_EIGHT_LANES(call) \
+  if (wide && wideNodeBounds()) {   \
+    eight_lanes::call;              \
+    return;                         \
+  }
+#else
+#define MANYLIGHT_EIGHT_LANES(call) (void)wide
+#endif
+
 void nodeBounds(const RegionTerms& region, const NodeLanes& in, int count, BoundLanes& out,
                 bool wide) {
-#ifdef MANYLIGHT_AVX2_LANES
-  if (wide && wideNodeBounds()) {
-    eight_lanes::nodeBounds(region, in, out);
-    return;
-  }
-#endif
+  MANYLIGHT_EIGHT_LANES(nodeBounds(region, in, out));
   for (int l = 0; l < count; ++l) one_lane::nodeBoundLanes(region, in, l, out);
 }
 
 void foldBounds(const RegionTerms& region, const FoldLanes& in, int count, float t[kLanes],
                 bool wide) {
-#ifdef MANYLIGHT_AVX2_LANES
-  if (wide && wideNodeBounds()) {
-    eight_lanes::foldBounds(region, in, t);
-    return;
-  }
-#endif
+  MANYLIGHT_EIGHT_LANES(foldBounds(region, in, t));
   for (int l = 0; l < count; ++l) one_lane::foldBoundLanes(region, in, l, t);
 }
 
 void gatherNodes(const float* const nodes[kLanes], int count, NodeLanes& out, bool wide) {
-#ifdef MANYLIGHT_AVX2_LANES
-  if (wide && wideNodeBounds()) {
-    const float* all[kLanes];
-    for (int l = 0; l < kLanes; ++l) all[l] = nodes[l < count ? l : 0];
-    eight_lanes::gatherNodes(all, out);
-    return;
-  }
-#endif
+  MANYLIGHT_EIGHT_LANES(gatherNodes(nodes, count, out));
   float* rows = reinterpret_cast<float*>(&out);
   for (int l = 0; l < kLanes; ++l) {
     float node[kNodeRows];
@@ -132,12 +129,7 @@ void gatherNodes(const float* const nodes[kLanes], int count, NodeLanes& out, bo
 }
 
 void addFarField(glm::vec3 centre, const FarLanes& in, int count, FarSums& sums, bool wide) {
-#ifdef MANYLIGHT_AVX2_LANES
-  if (wide && wideNodeBounds()) {
-    eight_lanes::addFarField(centre, in, count, sums);
-    return;
-  }
-#endif
+  MANYLIGHT_EIGHT_LANES(addFarField(centre, in, count, sums));
   for (int l = 0; l < count; ++l) one_lane::farFieldLanes(centre, in, count, l, sums);
 }
 
