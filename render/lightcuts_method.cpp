@@ -88,8 +88,8 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   const float zero[4] = {0, 0, 0, 0};
   glClearBufferfv(GL_COLOR, 1, zero);
-  // One lighting pass with `extra` defines.
-  auto pass = [&](std::initializer_list<const char*> extra) {
+  // One lighting pass with `extra` defines; `tileCuts`: it reads the shared cuts.
+  auto pass = [&](std::initializer_list<const char*> extra, bool tileCuts) {
     std::vector<std::string> all = defines;
     all.insert(all.end(), extra.begin(), extra.end());
     const gl::Program& shader = program(all);
@@ -111,7 +111,7 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     glUniform1i(shader.uniform("uErrorMode"), settings.mode == ErrorMode::Total ? 1 : 0);
     glUniform1i(shader.uniform("uMaxCut"), maxCut);
     glUniform1f(shader.uniform("uInfluence"), 1.0f / std::sqrt(std::max(settings.error, 1e-6f)));
-    if (tileSize > 1) {
+    if (tileCuts) {
       glActiveTexture(GL_TEXTURE6);
       glBindTexture(GL_TEXTURE_BUFFER, tileCuts_.texture.id());
       glUniform1i(shader.uniform("uTileCuts"), 6);
@@ -128,13 +128,13 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, 0, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    pass({"TILE_CUTS", "SHARED_PASS"});
+    pass({"TILE_CUTS", "SHARED_PASS"}, true);
     glStencilFunc(GL_EQUAL, 1, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    pass({"OWN_PASS"});
+    pass({"OWN_PASS"}, false);
     glDisable(GL_STENCIL_TEST);
   } else {
-    pass({});
+    pass({}, false);
   }
   glDisable(GL_BLEND);
   glActiveTexture(GL_TEXTURE0);
