@@ -75,7 +75,8 @@ TEST(FarField, SpotWithItsConeIsItsFirstOrderExpansion) {
       const glm::dvec3 x = c + delta * dir;
       const double exact = unitRadiance(spot, x, n).x * shading::kPi;
       const double error = std::abs(farFieldIrradiance(words.data(), x, n).x - exact);
-      // The remainder bound at distance δ, plus 1e-6 of the value: F and J are stored as floats.
+      // The remainder bound at distance δ, plus 1e-6 of the value: F and J are computed per
+      // entry and stored in single precision.
       EXPECT_LE(error, bound * (delta * delta) / (h * h) + 1e-6 * exact) << delta;
     }
   }

@@ -169,6 +169,7 @@ TEST(NodeLanes, EightLanesGiveOneLanesFarFieldSumsBitForBit) {
         const glm::vec3 v =
             glm::vec3(in.position[0][l], in.position[1][l], in.position[2][l]) - centre;
         const float expected = in.intensity[1][l] * v.y / std::pow(glm::length(v), 3.0f);
+        // Both in single precision, by different steps (γ v against I v.y/|v|³): 1e-5 of it.
         EXPECT_NEAR(one.f[1][1][l], expected, 1e-5f * std::abs(expected)) << round << " " << l;
       }
     }
