@@ -1,8 +1,5 @@
 #include "render/far_field.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "bake/light_tree_layout.h"
 #include "render/node_lanes.h"
 
