@@ -50,6 +50,11 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
   const double loadMs = loaded.loadMs;
   for (const std::string& w : scene.warnings)
     std::cerr << "manylight: " << scenePath << ": warning: " << w << "\n";
+  if (a.verbose && !scene.ignoredExtensions.empty()) {
+    std::cerr << "manylight: " << scenePath << ": extensions ignored (they change nothing here):";
+    for (const std::string& e : scene.ignoredExtensions) std::cerr << " " << e;
+    std::cerr << "\n";
+  }
   RenderRequest bakedRequest = request;
   if (baked.hasTrees) bakedRequest.prebuiltTrees = &baked.packed;
   const RenderOutcome out = renderScene(scene, bakedRequest);

@@ -16,7 +16,7 @@
 namespace manylight {
 
 inline constexpr char kBakedMagic[8] = {'M', 'L', 'B', 'A', 'K', 'E', '\r', '\n'};
-inline constexpr std::uint32_t kBakedFormatVersion = 1;
+inline constexpr std::uint32_t kBakedFormatVersion = 2;
 inline constexpr std::size_t kBakedHeaderBytes = 32;  // magic, version, flags, file size, checksum
 
 struct BakedScene {

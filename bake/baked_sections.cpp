@@ -47,17 +47,23 @@ std::string section(std::uint32_t which, const BakedScene& b) {
     w.put(std::uint32_t(s.materials.size()));
     for (const Material& m : s.materials) {
       putFloats(w, m.baseColorFactor);
-      w.put(std::int32_t(m.baseColorTexture));
       w.put(m.metallic), w.put(m.roughness);
       putFloats(w, m.emissive);
-      w.put(std::uint8_t(m.doubleSided));
+      w.put(m.normalScale), w.put(m.occlusionStrength), w.put(m.alphaCutoff);
+      w.put(std::uint8_t(m.alphaMode)), w.put(std::uint8_t(m.doubleSided)),
+          w.put(std::uint8_t(m.unlit));
+      for (int k = 0; k < Material::kTextureSlots; ++k) {
+        const TextureRef& t = m.slot(k);
+        w.put(std::int32_t(t.texture)), w.put(std::uint8_t(t.texCoord));
+        putFloats(w, t.transform);
+      }
     }
   } else if (which == kTextures) {
     w.put(std::uint32_t(s.textures.size()));
     for (const Texture& t : s.textures) {
       w.put(std::int32_t(t.width)), w.put(std::int32_t(t.height));
-      const bool flags[7] = {t.repeatS,   t.repeatT,   t.mirrorS, t.mirrorT,
-                             t.linearMag, t.linearMin, t.mipmaps};
+      const bool flags[8] = {t.repeatS,   t.repeatT,   t.mirrorS, t.mirrorT,
+                             t.linearMag, t.linearMin, t.mipmaps, t.srgb};
       for (bool f : flags) w.put(std::uint8_t(f));
       w.array(t.rgba);
     }
@@ -66,9 +72,9 @@ std::string section(std::uint32_t which, const BakedScene& b) {
     for (const Mesh& m : s.meshes) {
       w.put(std::uint32_t(m.primitives.size()));
       for (const Primitive& p : m.primitives) {
-        w.put(std::int32_t(p.material));
-        w.array(p.positions), w.array(p.normals), w.array(p.texcoords), w.array(p.colours),
-            w.array(p.indices);
+        w.put(std::int32_t(p.material)), w.put(std::uint8_t(p.mode));
+        w.array(p.positions), w.array(p.normals), w.array(p.texcoords), w.array(p.texcoords1),
+            w.array(p.tangents), w.array(p.colours), w.array(p.indices);
       }
     }
   } else if (which == kInstances) {
@@ -144,13 +150,26 @@ void readMaterials(Reader& r, Scene& s, std::size_t textures) {
   s.materials.resize(r.count(1u << 20, "materials"));
   for (Material& m : s.materials) {
     m.baseColorFactor = getFinite<glm::vec4>(r, "a base colour");
-    m.baseColorTexture = r.get<std::int32_t>();
-    if (m.baseColorTexture < -1 || m.baseColorTexture >= std::int64_t(textures))
-      r.fail("texture index out of range");
     m.metallic = getFinite<float>(r, "metallic");
     m.roughness = getFinite<float>(r, "roughness");
     m.emissive = getFinite<glm::vec3>(r, "emissive");
+    m.normalScale = getFinite<float>(r, "a normal scale");
+    m.occlusionStrength = getFinite<float>(r, "an occlusion strength");
+    m.alphaCutoff = getFinite<float>(r, "an alpha cutoff");
+    const auto alphaMode = r.get<std::uint8_t>();
+    if (alphaMode > std::uint8_t(AlphaMode::Blend)) r.fail("unknown alpha mode");
+    m.alphaMode = AlphaMode(alphaMode);
     m.doubleSided = r.get<std::uint8_t>() != 0;
+    m.unlit = r.get<std::uint8_t>() != 0;
+    for (int k = 0; k < Material::kTextureSlots; ++k) {
+      TextureRef& t = m.slot(k);
+      t.texture = r.get<std::int32_t>();
+      if (t.texture < -1 || t.texture >= std::int64_t(textures))
+        r.fail("texture index out of range");
+      t.texCoord = r.get<std::uint8_t>();
+      if (t.texCoord > 1) r.fail("texture coordinate set out of range");
+      t.transform = getFinite<glm::mat3>(r, "a texture transform");
+    }
   }
 }
 
@@ -161,8 +180,8 @@ void readTextures(Reader& r, Scene& s) {
     t.height = r.get<std::int32_t>();
     if (t.width < 1 || t.height < 1 || t.width > 16384 || t.height > 16384)
       r.fail("texture size out of range");
-    bool* flags[7] = {&t.repeatS,   &t.repeatT,   &t.mirrorS, &t.mirrorT,
-                      &t.linearMag, &t.linearMin, &t.mipmaps};
+    bool* flags[8] = {&t.repeatS,   &t.repeatT,   &t.mirrorS, &t.mirrorT,
+                      &t.linearMag, &t.linearMin, &t.mipmaps, &t.srgb};
     for (bool* f : flags) *f = r.get<std::uint8_t>() != 0;
     t.rgba = r.array<std::uint8_t>();
     if (t.rgba.size() != std::size_t(t.width) * t.height * 4)
@@ -178,22 +197,33 @@ void readMeshes(Reader& r, Scene& s) {
       p.material = r.get<std::int32_t>();
       if (p.material < -1 || p.material >= std::int64_t(s.materials.size()))
         r.fail("material index out of range");
+      const auto mode = r.get<std::uint8_t>();
+      if (mode > std::uint8_t(PrimitiveMode::Points)) r.fail("unknown primitive mode");
+      p.mode = PrimitiveMode(mode);
       p.positions = r.array<glm::vec3>();
       p.normals = r.array<glm::vec3>();
       p.texcoords = r.array<glm::vec2>();
+      p.texcoords1 = r.array<glm::vec2>();
+      p.tangents = r.array<glm::vec4>();
       p.colours = r.array<glm::vec4>();
       p.indices = r.array<std::uint32_t>();
       const std::size_t n = p.positions.size();
-      if (p.normals.size() != n || (!p.texcoords.empty() && p.texcoords.size() != n) ||
-          (!p.colours.empty() && p.colours.size() != n)) {
+      auto noneOrAll = [n](std::size_t k) { return k == 0 || k == n; };
+      const bool triangles = p.mode == PrimitiveMode::Triangles;
+      if ((triangles ? p.normals.size() != n : !noneOrAll(p.normals.size())) ||
+          !noneOrAll(p.texcoords.size()) || !noneOrAll(p.texcoords1.size()) ||
+          !noneOrAll(p.tangents.size()) || !noneOrAll(p.colours.size())) {
         r.fail("vertex attribute counts differ");
       }
-      if (p.indices.size() % 3 != 0) r.fail("index count is not a multiple of 3");
+      const std::size_t per = triangles ? 3 : p.mode == PrimitiveMode::Lines ? 2 : 1;
+      if (p.indices.size() % per != 0) r.fail("index count does not fit the primitive mode");
       for (std::uint32_t i : p.indices) {
         if (i >= n) r.fail("vertex index out of range");
       }
-      if (!finite(&p.positions.data()->x, n * 3) || !finite(&p.normals.data()->x, n * 3)) {
-        r.fail("vertex positions or normals are not finite");
+      auto floats = [](const auto& v) { return reinterpret_cast<const float*>(v.data()); };
+      if (!finite(floats(p.positions), n * 3) || !finite(floats(p.normals), p.normals.size() * 3) ||
+          !finite(floats(p.tangents), p.tangents.size() * 4)) {
+        r.fail("vertex positions, normals or tangents are not finite");
       }
     }
   }

@@ -36,9 +36,10 @@ gl::Texture uploadTexture(const Texture& t) {
     for (int i = 0; i < 256; ++i) table[i] = float(decodeSrgb8(std::uint8_t(i)));
     return table;
   }();
+  // Data textures (normals, metallic-roughness, occlusion) are linear: codes / 255.
   std::vector<float> linear(t.rgba.size());
   for (std::size_t i = 0; i < t.rgba.size(); ++i) {
-    linear[i] = (i % 4 == 3) ? t.rgba[i] / 255.0f : kLinear[t.rgba[i]];
+    linear[i] = (i % 4 == 3 || !t.srgb) ? t.rgba[i] / 255.0f : kLinear[t.rgba[i]];
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, t.width, t.height, 0, GL_RGBA, GL_FLOAT,
@@ -67,11 +68,19 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
       GpuPrimitive& g = prims.emplace_back();
       glBindVertexArray(g.vao.id());
       g.buffers.push_back(uploadAttribute(p.positions, 0, 3));
-      g.buffers.push_back(uploadAttribute(p.normals, 1, 3));
+      g.hasNormals = !p.normals.empty();
       g.hasTexcoords = !p.texcoords.empty();
       g.hasColours = !p.colours.empty();
+      g.hasTexcoords1 = !p.texcoords1.empty();
+      g.hasTangents = !p.tangents.empty();
+      if (g.hasNormals) g.buffers.push_back(uploadAttribute(p.normals, 1, 3));
       if (g.hasTexcoords) g.buffers.push_back(uploadAttribute(p.texcoords, 2, 2));
       if (g.hasColours) g.buffers.push_back(uploadAttribute(p.colours, 3, 4));
+      if (g.hasTexcoords1) g.buffers.push_back(uploadAttribute(p.texcoords1, 4, 2));
+      if (g.hasTangents) g.buffers.push_back(uploadAttribute(p.tangents, 5, 4));
+      g.mode = p.mode == PrimitiveMode::Points  ? GL_POINTS
+               : p.mode == PrimitiveMode::Lines ? GL_LINES
+                                                : GL_TRIANGLES;
       gl::Buffer& indices = g.buffers.emplace_back();
       glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices.id());
       glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(p.indices.size() * 4), p.indices.data(),
@@ -86,10 +95,14 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
     for (const GpuPrimitive& g : meshes_[inst.mesh]) {
       if (g.material >= 0) {
         const Material& m = scene.materials[g.material];
-        hasSpecular_ = hasSpecular_ || shading::hasSpecularTerm(m.metallic, m.roughness);
+        // A metallic-roughness texture can lower the roughness below its factor's.
+        const bool mapped = m.metallicRoughnessTexture.texture >= 0;
+        hasSpecular_ = hasSpecular_ ||
+                       (!m.unlit && (mapped || shading::hasSpecularTerm(m.metallic, m.roughness)));
       }
       const glm::mat3 linear(inst.world);
-      draws_.push_back({&g.vao, g.indexCount, g.hasTexcoords, g.hasColours, g.material, inst.world,
+      draws_.push_back({&g.vao, g.indexCount, g.mode, g.hasNormals, g.hasTexcoords, g.hasTexcoords1,
+                        g.hasTangents, g.hasColours, g.material, inst.world,
                         glm::transpose(glm::inverse(linear)), glm::determinant(linear) < 0.0f});
     }
   }

@@ -21,7 +21,8 @@ class GpuScene {
   struct Draw {
     const gl::VertexArray* vao;
     GLsizei indexCount;
-    bool hasTexcoords, hasColours;
+    GLenum mode;  // GL_TRIANGLES, GL_LINES or GL_POINTS
+    bool hasNormals, hasTexcoords, hasTexcoords1, hasTangents, hasColours;
     int material;  // −1: default material
     glm::mat4 model;
     glm::mat3 normalMatrix;  // inverse transpose of the model's upper 3×3
@@ -42,7 +43,9 @@ class GpuScene {
     gl::VertexArray vao;
     std::vector<gl::Buffer> buffers;
     GLsizei indexCount = 0;
-    bool hasTexcoords = false, hasColours = false;
+    GLenum mode = GL_TRIANGLES;
+    bool hasNormals = false, hasTexcoords = false, hasTexcoords1 = false, hasTangents = false,
+         hasColours = false;
     int material = -1;
   };
   std::vector<std::vector<GpuPrimitive>> meshes_;

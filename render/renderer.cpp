@@ -33,17 +33,7 @@ const char* methodName(Method m) {
 
 Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
                    Method method, const TreeOptions& trees, const PackedTrees* prebuilt)
-    : scene_(scene),
-      gpu_(scene, lights),
-      gbuffer_(width, height),
-      geometry_(gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {},
-                                  {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"})) {
-  const gl::Program& p = geometry_;
-  uniforms_ = {
-      p.uniform("uViewProjection"), p.uniform("uAmbient"),      p.uniform("uBaseColorTexture"),
-      p.uniform("uModel"),          p.uniform("uNormalMatrix"), p.uniform("uBaseColorFactor"),
-      p.uniform("uMetallic"),       p.uniform("uRoughness"),    p.uniform("uEmissive"),
-      p.uniform("uHasTexture"),     p.uniform("uDoubleSided"),  p.uniform("uMirrored")};
+    : scene_(scene), gpu_(scene, lights), gbuffer_(width, height) {
   if (method != Method::Reference) {
     glFinish();
     const auto start = std::chrono::steady_clock::now();
@@ -54,56 +44,6 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
     bakeMs_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
-}
-
-void Renderer::geometryPass(const View& view, const FrameSettings& settings) {
-  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_.geometryFramebuffer().id());
-  glViewport(0, 0, gbuffer_.width(), gbuffer_.height());
-  const float zero[4] = {0, 0, 0, 0};
-  for (int i = 0; i < GBuffer::kTargetCount; ++i) glClearBufferfv(GL_COLOR, i, zero);
-  glDepthMask(GL_TRUE);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDisable(GL_BLEND);
-  glCullFace(GL_BACK);
-
-  geometry_.use();
-  const glm::mat4 viewProjection = view.projection * view.view;
-  const GeometryUniforms& u = uniforms_;
-  glUniformMatrix4fv(u.viewProjection, 1, GL_FALSE, glm::value_ptr(viewProjection));
-  glUniform3fv(u.ambient, 1, glm::value_ptr(settings.ambient));
-  glUniform1i(u.baseColorTexture, 0);
-  glActiveTexture(GL_TEXTURE0);
-  const Material fallback = defaultMaterial();
-  for (const GpuScene::Draw& d : gpu_.draws()) {
-    const Material& m = d.material >= 0 ? scene_.materials[d.material] : fallback;
-    glUniformMatrix4fv(u.model, 1, GL_FALSE, glm::value_ptr(d.model));
-    glUniformMatrix3fv(u.normalMatrix, 1, GL_FALSE, glm::value_ptr(d.normalMatrix));
-    glUniform4fv(u.baseColorFactor, 1, glm::value_ptr(m.baseColorFactor));
-    glUniform1f(u.metallic, m.metallic);
-    glUniform1f(u.roughness, m.roughness);
-    glUniform3fv(u.emissive, 1, glm::value_ptr(m.emissive));
-    const bool textured = m.baseColorTexture >= 0 && d.hasTexcoords;
-    glUniform1i(u.hasTexture, textured ? 1 : 0);
-    if (textured) glBindTexture(GL_TEXTURE_2D, gpu_.texture(m.baseColorTexture)->id());
-    glUniform1i(u.doubleSided, m.doubleSided ? 1 : 0);
-    glUniform1i(u.mirrored, d.mirrored ? 1 : 0);
-    if (m.doubleSided) {
-      glDisable(GL_CULL_FACE);
-    } else {
-      glEnable(GL_CULL_FACE);
-    }
-    glFrontFace(d.mirrored ? GL_CW : GL_CCW);
-    // Absent attributes read these constants.
-    if (!d.hasTexcoords) glVertexAttrib4f(2, 0.0f, 0.0f, 0.0f, 1.0f);
-    if (!d.hasColours) glVertexAttrib4f(3, 1.0f, 1.0f, 1.0f, 1.0f);
-    glBindVertexArray(d.vao->id());
-    glDrawElements(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT, nullptr);
-  }
-  glBindVertexArray(0);
-  glFrontFace(GL_CCW);
-  glDisable(GL_CULL_FACE);
 }
 
 void warmUpGeometryPass() {
@@ -156,7 +96,7 @@ int Renderer::lightReference(const View& view, const FrameSettings& settings) {
 Image Renderer::render(const View& view, const FrameSettings& settings, FrameStats* stats) {
   glFinish();
   const auto start = std::chrono::steady_clock::now();
-  geometryPass(view, settings);
+  geometry_.draw(scene_, gpu_, gbuffer_, view, settings.ambient);
   glBindVertexArray(emptyVao_.id());
   int passes = 1;
   if (lightcuts_) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "render/gbuffer.h"
+#include "render/geometry_pass.h"
 #include "render/gpu_scene.h"
 #include "render/image.h"
 #include "render/lightcuts_method.h"
@@ -73,20 +74,12 @@ class Renderer {
   Image render(const View& view, const FrameSettings& settings, FrameStats* stats = nullptr);
 
  private:
-  void geometryPass(const View& view, const FrameSettings& settings);
   int lightReference(const View& view, const FrameSettings& settings);
-
-  // Uniform locations of the G-buffer program, looked up once.
-  struct GeometryUniforms {
-    GLint viewProjection, ambient, baseColorTexture, model, normalMatrix, baseColorFactor, metallic,
-        roughness, emissive, hasTexture, doubleSided, mirrored;
-  };
 
   const Scene& scene_;
   GpuScene gpu_;
   GBuffer gbuffer_;
-  const gl::Program& geometry_;  // kept by the context
-  GeometryUniforms uniforms_;
+  GeometryPass geometry_;
   ReferenceMethod reference_;
   std::unique_ptr<LightcutsMethod> lightcuts_;
   double bakeMs_ = 0.0;

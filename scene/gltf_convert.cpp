@@ -3,10 +3,12 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
+#include <type_traits>
 
 #include "scene/error.h"
 #include "scene/gltf_accessors.h"
 #include "scene/half_edge.h"
+#include "scene/tangents.h"
 
 namespace manylight::gltf {
 namespace {
@@ -22,23 +24,43 @@ void checkIndex(int index, const std::vector<T>& v, const std::string& what) {
   }
 }
 
-// Triangle list indices for a primitive mode; empty for points and lines.
-std::vector<std::uint32_t> triangulate(int mode, std::vector<std::uint32_t> idx) {
+// The indices of a primitive mode as triangle, line-segment or point lists.
+std::vector<std::uint32_t> assemble(int mode, std::vector<std::uint32_t> idx) {
   std::vector<std::uint32_t> out;
-  if (mode == TINYGLTF_MODE_TRIANGLES) {
-    idx.resize(idx.size() / 3 * 3);
-    return idx;
+  switch (mode) {
+    case TINYGLTF_MODE_TRIANGLES:
+      idx.resize(idx.size() / 3 * 3);
+      return idx;
+    case TINYGLTF_MODE_TRIANGLE_STRIP:
+      for (std::size_t i = 2; i < idx.size(); ++i) {
+        const bool even = (i % 2) == 0;
+        out.insert(out.end(), {idx[i - 2], even ? idx[i - 1] : idx[i], even ? idx[i] : idx[i - 1]});
+      }
+      return out;
+    case TINYGLTF_MODE_TRIANGLE_FAN:
+      for (std::size_t i = 2; i < idx.size(); ++i)
+        out.insert(out.end(), {idx[i - 1], idx[i], idx[0]});
+      return out;
+    case TINYGLTF_MODE_LINE:
+      idx.resize(idx.size() / 2 * 2);
+      return idx;
+    case TINYGLTF_MODE_LINE_STRIP:
+    case TINYGLTF_MODE_LINE_LOOP:
+      for (std::size_t i = 1; i < idx.size(); ++i) out.insert(out.end(), {idx[i - 1], idx[i]});
+      if (mode == TINYGLTF_MODE_LINE_LOOP && idx.size() > 2)
+        out.insert(out.end(), {idx.back(), idx[0]});
+      return out;
+    default:  // points
+      return idx;
   }
-  if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-    for (std::size_t i = 2; i < idx.size(); ++i) {
-      const bool even = (i % 2) == 0;
-      out.insert(out.end(), {idx[i - 2], even ? idx[i - 1] : idx[i], even ? idx[i] : idx[i - 1]});
-    }
-  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-    for (std::size_t i = 2; i < idx.size(); ++i)
-      out.insert(out.end(), {idx[i - 1], idx[i], idx[0]});
-  }
-  return out;
+}
+
+PrimitiveMode modeOf(int mode) {
+  if (mode == TINYGLTF_MODE_POINTS) return PrimitiveMode::Points;
+  if (mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+      mode == TINYGLTF_MODE_LINE_STRIP)
+    return PrimitiveMode::Lines;
+  return PrimitiveMode::Triangles;
 }
 
 // Drops degenerate triangles, counts boundary and non-manifold edges into `topology`, and
@@ -61,8 +83,10 @@ void buildTopology(Primitive& p, float creaseRadians, MeshTopology& topology) {
   for (std::uint32_t v : n.source) {
     out.positions.push_back(p.positions[v]);
     if (!p.texcoords.empty()) out.texcoords.push_back(p.texcoords[v]);
+    if (!p.texcoords1.empty()) out.texcoords1.push_back(p.texcoords1[v]);
     if (!p.colours.empty()) out.colours.push_back(p.colours[v]);
   }
+  // TANGENT is meaningless without the normals it was made for; they are made anew below.
   p = std::move(out);
 }
 
@@ -114,8 +138,7 @@ Converter::Converter(const tinygltf::Model& model, Scene& scene, float creaseRad
     : model_(model),
       scene_(scene),
       meshes_(model.meshes.size(), -1),
-      materials_(model.materials.size(), -1),
-      textures_(model.textures.size(), -1),
+      materials_(model, scene),
       creaseRadians_(creaseRadians) {}
 
 int Converter::mesh(int index) {
@@ -136,12 +159,12 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
   const std::string where = "mesh " + str(meshIndex) + " primitive " + str(primIndex);
   Primitive p;
   const int mode = primitiveMode(src);
-  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-    scene_.warnings.push_back(where + ": points and lines (mode " + str(mode) + ") skipped");
+  if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+    scene_.warnings.push_back(where + ": unknown mode " + str(mode) + "; skipped");
     return p;
   }
-  auto attr = [&](const char* name) {
+  p.mode = modeOf(mode);
+  auto attr = [&](const std::string& name) {
     auto it = src.attributes.find(name);
     return it == src.attributes.end() ? -1 : it->second;
   };
@@ -152,39 +175,29 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
   p.positions = toVectors<glm::vec3>(readFloats(model_, attr("POSITION"), 3, "POSITION"), 3, true,
                                      where + " POSITION");
   const std::size_t count = p.positions.size();
-  auto sameCount = [&](std::size_t n, const char* what) {
+  auto sameCount = [&](std::size_t n, const std::string& what) {
     if (n != count) {
       throw SceneError(where + ": " + what + " has " + std::to_string(n) + " elements, POSITION " +
                        std::to_string(count));
     }
   };
-  if (attr("NORMAL") >= 0) {
-    p.normals = toVectors<glm::vec3>(readFloats(model_, attr("NORMAL"), 3, "NORMAL"), 3, true,
-                                     where + " NORMAL");
-    sameCount(p.normals.size(), "NORMAL");
-  }
-  p.material = src.material >= 0 ? material(src.material) : -1;
-  const int texCoordSet =
-      p.material >= 0 && src.material < int(model_.materials.size())
-          ? model_.materials[src.material].pbrMetallicRoughness.baseColorTexture.texCoord
-          : 0;
-  const std::string uvName = "TEXCOORD_" + str(texCoordSet);
-  if (attr(uvName.c_str()) >= 0) {
-    p.texcoords = toVectors<glm::vec2>(readFloats(model_, attr(uvName.c_str()), 2, uvName), 2,
-                                       false, where + " " + uvName);
-    sameCount(p.texcoords.size(), uvName.c_str());
-  }
-  if (attr("COLOR_0") >= 0) {
-    const int acc = attr("COLOR_0");
-    checkIndex(acc, model_.accessors, "accessor");
-    const int n = model_.accessors[acc].type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
-    const std::vector<float> f = readFloats(model_, acc, n, "COLOR_0");
-    p.colours.resize(f.size() / n);
-    for (std::size_t i = 0; i < p.colours.size(); ++i) {
-      p.colours[i] = glm::vec4(f[i * n], f[i * n + 1], f[i * n + 2], n == 4 ? f[i * n + 3] : 1.0f);
-    }
-    sameCount(p.colours.size(), "COLOR_0");
-  }
+  auto read = [&](const std::string& name, int n, bool requireFinite, auto& out) {
+    using V = typename std::decay_t<decltype(out)>::value_type;
+    if (attr(name) < 0) return;
+    out =
+        toVectors<V>(readFloats(model_, attr(name), n, name), n, requireFinite, where + " " + name);
+    sameCount(out.size(), name);
+  };
+  read("NORMAL", 3, true, p.normals);
+  p.material = src.material >= 0 ? materials_.material(src.material) : -1;
+  const Material* m = p.material >= 0 ? &scene_.materials[p.material] : nullptr;
+  read("TEXCOORD_0", 2, false, p.texcoords);
+  if (m && m->readsTexCoord(1)) read("TEXCOORD_1", 2, false, p.texcoords1);
+  const bool normalMapped =
+      p.mode == PrimitiveMode::Triangles && m && m->normalTexture.texture >= 0;
+  if (normalMapped && !p.normals.empty()) read("TANGENT", 4, true, p.tangents);
+  readColours(attr("COLOR_0"), p);
+  if (!p.colours.empty()) sameCount(p.colours.size(), "COLOR_0");
   std::vector<std::uint32_t> idx;
   if (src.indices >= 0) {
     idx = readIndices(model_, src.indices);
@@ -198,66 +211,25 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
     idx.resize(count);
     for (std::size_t i = 0; i < count; ++i) idx[i] = std::uint32_t(i);
   }
-  p.indices = triangulate(mode, std::move(idx));
+  p.indices = assemble(mode, std::move(idx));
+  if (p.mode != PrimitiveMode::Triangles) return p;
   buildTopology(p, creaseRadians_, scene_.topology);
+  if (normalMapped && p.tangents.empty()) {
+    const std::vector<glm::vec2>& uvs = m->normalTexture.texCoord == 1 ? p.texcoords1 : p.texcoords;
+    if (!uvs.empty()) p.tangents = uvTangents(p.positions, p.normals, uvs, p.indices);
+  }
   return p;
 }
 
-int Converter::material(int index) {
-  checkIndex(index, model_.materials, "material");
-  if (materials_[index] >= 0) return materials_[index];
-  const tinygltf::Material& src = model_.materials[index];
-  const auto& pbr = src.pbrMetallicRoughness;
-  Material m;
-  if (pbr.baseColorFactor.size() == 4) {
-    m.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1],
-                                  pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
+void Converter::readColours(int accessor, Primitive& p) const {
+  if (accessor < 0) return;
+  checkIndex(accessor, model_.accessors, "accessor");
+  const int n = model_.accessors[accessor].type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+  const std::vector<float> f = readFloats(model_, accessor, n, "COLOR_0");
+  p.colours.resize(f.size() / n);
+  for (std::size_t i = 0; i < p.colours.size(); ++i) {
+    p.colours[i] = glm::vec4(f[i * n], f[i * n + 1], f[i * n + 2], n == 4 ? f[i * n + 3] : 1.0f);
   }
-  m.metallic = float(pbr.metallicFactor);
-  m.roughness = float(pbr.roughnessFactor);
-  m.emissive = vec3Of(src.emissiveFactor, glm::vec3(0.0f));
-  m.doubleSided = src.doubleSided;
-  if (pbr.baseColorTexture.index >= 0) {
-    m.baseColorTexture = texture(pbr.baseColorTexture.index);
-    if (m.baseColorTexture < 0) {
-      scene_.warnings.push_back("material " + str(index) + ": base colour texture " +
-                                str(pbr.baseColorTexture.index) + " has no image; ignored");
-    }
-  }
-  materials_[index] = int(scene_.materials.size());
-  scene_.materials.push_back(m);
-  return materials_[index];
-}
-
-int Converter::texture(int index) {
-  if (index < 0 || std::size_t(index) >= model_.textures.size()) return -1;
-  if (textures_[index] >= 0) return textures_[index];
-  const tinygltf::Texture& src = model_.textures[index];
-  if (src.source < 0 || std::size_t(src.source) >= model_.images.size()) return -1;
-  const tinygltf::Image& img = model_.images[src.source];
-  if (img.image.empty() || img.width <= 0 || img.height <= 0 || img.component != 4 ||
-      img.bits != 8) {
-    return -1;
-  }
-  Texture t;
-  t.width = img.width;
-  t.height = img.height;
-  t.rgba = img.image;
-  if (src.sampler >= 0 && std::size_t(src.sampler) < model_.samplers.size()) {
-    const tinygltf::Sampler& s = model_.samplers[src.sampler];
-    t.repeatS = s.wrapS != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-    t.repeatT = s.wrapT != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-    t.mirrorS = s.wrapS == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
-    t.mirrorT = s.wrapT == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
-    t.linearMag = s.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST;
-    t.linearMin = s.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
-                  s.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST &&
-                  s.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
-    t.mipmaps = s.minFilter < 0 || s.minFilter >= TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST;
-  }
-  textures_[index] = int(scene_.textures.size());
-  scene_.textures.push_back(std::move(t));
-  return textures_[index];
 }
 
 Camera Converter::camera(int index) const {

@@ -1,8 +1,10 @@
 #pragma once
 // Converts glTF objects (meshes, materials, textures, lights, cameras) into scene/ types,
 // each glTF object once, on first use. Internal to scene/.
+#include <string>
 #include <vector>
 
+#include "scene/gltf_materials.h"
 #include "scene/scene.h"
 
 namespace tinygltf {
@@ -35,13 +37,13 @@ class Converter {
   Light light(int index, const glm::mat4& world) const;
 
  private:
-  int material(int index);
-  int texture(int index);
   Primitive primitive(int meshIndex, int primIndex);
+  void readColours(int accessor, Primitive& p) const;
 
   const tinygltf::Model& model_;
   Scene& scene_;
-  std::vector<int> meshes_, materials_, textures_;  // glTF index → scene index, −1 if not yet
+  std::vector<int> meshes_;  // glTF index → scene index, −1 if not yet
+  MaterialConverter materials_;
   float creaseRadians_;
 };
 

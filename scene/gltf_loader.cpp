@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -23,7 +24,12 @@ namespace manylight {
 namespace {
 
 // Extensions whose absence would change what we render; we implement these fully.
-const std::set<std::string> kSupportedRequired = {"KHR_lights_punctual", "KHR_mesh_quantization"};
+const std::set<std::string> kSupportedRequired = {
+    "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_texture_transform",
+    "KHR_materials_emissive_strength", "KHR_materials_unlit"};
+// Required extensions refused with a reason of their own.
+const std::map<std::string, std::string> kRefusedRequired = {
+    {"KHR_texture_basisu", "Basis Universal (KTX2) textures have no decoder here"}};
 
 std::string oneLine(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
@@ -124,6 +130,9 @@ void checkVersion(const std::string& version, const std::string& minVersion,
     throw SceneError("asset.minVersion " + minVersion + " is not supported, expected 2.0");
   }
   for (const std::string& ext : required) {
+    const auto refused = kRefusedRequired.find(ext);
+    if (refused != kRefusedRequired.end())
+      throw SceneError("required extension " + ext + " is not supported: " + refused->second);
     if (!kSupportedRequired.count(ext)) {
       throw SceneError("required extension " + ext + " is not supported");
     }
@@ -478,6 +487,9 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     if (!files.missing().empty())
       scene.warnings.push_back(files.missing() + "; its textures are left out");
     checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
+    for (const std::string& ext : model.extensionsUsed) {
+      if (!kSupportedRequired.count(ext)) scene.ignoredExtensions.push_back(ext);
+    }
     checkTriangleCount(model, options.maxTriangles);
     gltf::Converter convert(model, scene, glm::radians(options.creaseAngleDegrees));
     checkStructure(model, convert);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace manylight {
@@ -25,7 +26,8 @@ struct Light {
 struct Texture {
   int width = 0;
   int height = 0;
-  std::vector<std::uint8_t> rgba;  // sRGB-encoded RGBA8, row 0 at the top (glTF UV v = 0)
+  std::vector<std::uint8_t> rgba;  // RGBA8, row 0 at the top (glTF UV v = 0)
+  bool srgb = true;  // colour (base colour, emissive): sRGB-encoded; data (normals, …): linear
   bool repeatS = true, repeatT = true;
   bool mirrorS = false, mirrorT = false;
   bool linearMag = true;
@@ -33,23 +35,71 @@ struct Texture {
   bool mipmaps = true;
 };
 
-struct Material {
-  glm::vec4 baseColorFactor{1.0f};
-  int baseColorTexture = -1;  // index into Scene::textures
-  float metallic = 1.0f;
-  float roughness = 1.0f;
-  glm::vec3 emissive{0.0f};
-  bool doubleSided = false;
+// A material's use of a texture (glTF textureInfo): which texture, which UV set, and the
+// KHR_texture_transform of its UVs.
+struct TextureRef {
+  int texture = -1;  // index into Scene::textures; −1: none
+  int texCoord = 0;  // 0: TEXCOORD_0, 1: TEXCOORD_1
+  // uv' = (transform · (uv, 1)).xy: translation · rotation · scale, identity when absent.
+  glm::mat3 transform{1.0f};
+  bool operator==(const TextureRef& o) const {
+    return texture == o.texture && texCoord == o.texCoord && transform == o.transform;
+  }
 };
 
-// One triangle list. Attributes are in the mesh's local space.
+enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
+
+// glTF 2.0 metallic-roughness, with its textures and the extensions that change a picture
+// (scene/shading_model.h says how it is shaded).
+struct Material {
+  glm::vec4 baseColorFactor{1.0f};
+  TextureRef baseColorTexture;  // sRGB
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  TextureRef metallicRoughnessTexture;  // linear: B metalness, G roughness, times the factors
+  TextureRef normalTexture;             // linear, tangent space
+  float normalScale = 1.0f;
+  TextureRef occlusionTexture;  // linear: R, on the ambient term only
+  float occlusionStrength = 1.0f;
+  glm::vec3 emissive{0.0f};    // emissiveFactor × KHR_materials_emissive_strength
+  TextureRef emissiveTexture;  // sRGB
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;  // AlphaMode::Mask
+  bool doubleSided = false;
+  bool unlit = false;  // KHR_materials_unlit: base colour out, no lighting
+
+  // The material's textures, in the order the G-buffer pass binds them.
+  static constexpr int kTextureSlots = 5;
+  const TextureRef& slot(int i) const {
+    const TextureRef* slots[kTextureSlots] = {&baseColorTexture, &metallicRoughnessTexture,
+                                              &normalTexture, &occlusionTexture, &emissiveTexture};
+    return *slots[i];
+  }
+  TextureRef& slot(int i) { return const_cast<TextureRef&>(std::as_const(*this).slot(i)); }
+  // Whether any texture reads UV set `set`.
+  bool readsTexCoord(int set) const {
+    for (int i = 0; i < kTextureSlots; ++i) {
+      if (slot(i).texture >= 0 && slot(i).texCoord == set) return true;
+    }
+    return false;
+  }
+};
+
+// What a primitive's indices list: triangles (3 each), line segments (2 each; strips and loops
+// are expanded) or points (1 each).
+enum class PrimitiveMode : std::uint8_t { Triangles, Lines, Points };
+
+// One list of triangles, lines or points. Attributes are in the mesh's local space.
 struct Primitive {
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;      // same count as positions
-  std::vector<glm::vec2> texcoords;    // empty or same count
+  std::vector<glm::vec3> normals;      // same count as positions; empty for points and lines
+  std::vector<glm::vec2> texcoords;    // TEXCOORD_0: empty or same count
+  std::vector<glm::vec2> texcoords1;   // TEXCOORD_1, where a texture reads it: empty or same
+  std::vector<glm::vec4> tangents;     // where a normal texture is used: empty or same (w ±1)
   std::vector<glm::vec4> colours;      // empty or same count (linear RGBA)
-  std::vector<std::uint32_t> indices;  // triangles, 3 per face
-  int material = -1;                   // index into Scene::materials; -1 for the default material
+  std::vector<std::uint32_t> indices;  // by `mode`
+  PrimitiveMode mode = PrimitiveMode::Triangles;
+  int material = -1;  // index into Scene::materials; -1 for the default material
 };
 
 // What the half-edge pass (scene/half_edge.h) found over all primitives.
@@ -116,6 +166,9 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<Camera> cameras;  // one per glTF camera, placed by the first node using it
   std::vector<std::string> warnings;
+  // extensionsUsed that change nothing here (optional appearance extensions such as
+  // KHR_materials_sheen, ignored as the glTF spec allows), for --verbose.
+  std::vector<std::string> ignoredExtensions;
   MeshTopology topology;
 
   // World-space bounds of all instanced geometry.

@@ -3,6 +3,7 @@
 #include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -55,10 +56,44 @@ struct GltfBuilder::Impl {
     return int(model.accessors.size()) - 1;
   }
 
+  // A PNG image, a LINEAR / REPEAT sampler and a texture of them; returns the texture.
+  int addTexture(const BuilderTexture& t) {
+    const RawImage<std::uint8_t> pixels{t.width, t.height, 4, t.rgba};
+    std::vector<unsigned char> png;
+    std::string error;
+    if (!imageIo().encodePng8(pixels, &png, &error))
+      throw SceneError("cannot encode texture: " + error);
+    tinygltf::Image img;
+    img.bufferView = addView(png.data(), png.size(), 0);
+    img.mimeType = "image/png";
+    model.images.push_back(img);
+    tinygltf::Sampler s;
+    s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    s.wrapS = s.wrapT = TINYGLTF_TEXTURE_WRAP_REPEAT;
+    model.samplers.push_back(s);
+    tinygltf::Texture tex;
+    tex.source = int(model.images.size()) - 1;
+    tex.sampler = int(model.samplers.size()) - 1;
+    model.textures.push_back(tex);
+    return int(model.textures.size()) - 1;
+  }
+
+  // Lists `extension` in extensionsUsed and extensionsRequired, once.
+  void use(const std::string& extension) {
+    auto& used = model.extensionsUsed;
+    if (std::find(used.begin(), used.end(), extension) != used.end()) return;
+    used.push_back(extension);
+    model.extensionsRequired.push_back(extension);
+  }
+
   int addMesh(const std::vector<glm::vec3>& pos, const std::vector<glm::vec3>& nrm,
-              const std::vector<glm::vec2>& uv, const std::vector<std::uint32_t>& idx,
-              int material) {
+              const std::vector<glm::vec2>& uv, const std::vector<std::uint32_t>& idx, int material,
+              const std::vector<glm::vec2>& uv1 = {}) {
     tinygltf::Primitive p;
+    if (!uv1.empty())
+      p.attributes["TEXCOORD_1"] = addAccessor(
+          uv1.data(), uv1.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, 2, TINYGLTF_TARGET_ARRAY_BUFFER);
     p.attributes["POSITION"] = addAccessor(pos.data(), pos.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, 3,
                                            TINYGLTF_TARGET_ARRAY_BUFFER, true);
     p.attributes["NORMAL"] = addAccessor(nrm.data(), nrm.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, 3,
@@ -126,26 +161,41 @@ int GltfBuilder::addMaterial(const BuilderMaterial& m) {
   mat.pbrMetallicRoughness.roughnessFactor = m.roughness;
   mat.emissiveFactor = {m.emissive.r, m.emissive.g, m.emissive.b};
   mat.doubleSided = m.doubleSided;
-  if (!m.textureRgba.empty()) {
-    const RawImage<std::uint8_t> pixels{m.textureWidth, m.textureHeight, 4, m.textureRgba};
-    std::vector<unsigned char> png;
-    std::string error;
-    if (!imageIo().encodePng8(pixels, &png, &error))
-      throw SceneError("cannot encode texture: " + error);
-    tinygltf::Image img;
-    img.bufferView = impl_->addView(png.data(), png.size(), 0);
-    img.mimeType = "image/png";
-    impl_->model.images.push_back(img);
-    tinygltf::Sampler s;
-    s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    s.wrapS = s.wrapT = TINYGLTF_TEXTURE_WRAP_REPEAT;
-    impl_->model.samplers.push_back(s);
-    tinygltf::Texture t;
-    t.source = int(impl_->model.images.size()) - 1;
-    t.sampler = int(impl_->model.samplers.size()) - 1;
-    impl_->model.textures.push_back(t);
-    mat.pbrMetallicRoughness.baseColorTexture.index = int(impl_->model.textures.size()) - 1;
+  mat.alphaMode = m.alphaMode;
+  mat.alphaCutoff = m.alphaCutoff;
+  BuilderTexture base;
+  base.width = m.textureWidth, base.height = m.textureHeight, base.rgba = m.textureRgba;
+  auto info = [&](const BuilderTexture& t, auto& out) {
+    if (t.rgba.empty()) return;
+    out.index = impl_->addTexture(t);
+    out.texCoord = t.texCoord;
+    if (t.transform) {
+      tinygltf::Value::Object x;
+      x["offset"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(t.offset.x)),
+                                                           tinygltf::Value(double(t.offset.y))});
+      x["scale"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(t.scale.x)),
+                                                          tinygltf::Value(double(t.scale.y))});
+      x["rotation"] = tinygltf::Value(double(t.rotation));
+      out.extensions["KHR_texture_transform"] = tinygltf::Value(x);
+      impl_->use("KHR_texture_transform");
+    }
+  };
+  info(base, mat.pbrMetallicRoughness.baseColorTexture);
+  info(m.metallicRoughness, mat.pbrMetallicRoughness.metallicRoughnessTexture);
+  info(m.normal, mat.normalTexture);
+  mat.normalTexture.scale = m.normalScale;
+  info(m.occlusion, mat.occlusionTexture);
+  mat.occlusionTexture.strength = m.occlusionStrength;
+  info(m.emissiveTexture, mat.emissiveTexture);
+  if (m.emissiveStrength != 1.0f) {
+    tinygltf::Value::Object x;
+    x["emissiveStrength"] = tinygltf::Value(double(m.emissiveStrength));
+    mat.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(x);
+    impl_->use("KHR_materials_emissive_strength");
+  }
+  if (m.unlit) {
+    mat.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object{});
+    impl_->use("KHR_materials_unlit");
   }
   impl_->model.materials.push_back(mat);
   return int(impl_->model.materials.size()) - 1;
@@ -210,6 +260,17 @@ int GltfBuilder::addPlane(glm::vec3 centre, glm::vec2 size, int material) {
   const std::vector<glm::vec2> uv = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
   const std::vector<std::uint32_t> idx = {0, 1, 2, 0, 2, 3};
   const int mesh = impl_->addMesh(pos, nrm, uv, idx, material);
+  return impl_->addNode(mesh, centre, glm::vec3(size.x, 1.0f, size.y));
+}
+
+int GltfBuilder::addPlaneWithSecondUvs(glm::vec3 centre, glm::vec2 size, int material) {
+  const std::vector<glm::vec3> pos = {
+      {-0.5f, 0, 0.5f}, {0.5f, 0, 0.5f}, {0.5f, 0, -0.5f}, {-0.5f, 0, -0.5f}};
+  const std::vector<glm::vec3> nrm(4, glm::vec3(0, 1, 0));
+  const std::vector<glm::vec2> uv = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  const std::vector<glm::vec2> uv1 = {{1, 1}, {0, 1}, {0, 0}, {1, 0}};
+  const std::vector<std::uint32_t> idx = {0, 1, 2, 0, 2, 3};
+  const int mesh = impl_->addMesh(pos, nrm, uv, idx, material, uv1);
   return impl_->addNode(mesh, centre, glm::vec3(size.x, 1.0f, size.y));
 }
 

@@ -10,16 +10,34 @@
 
 namespace manylight {
 
+// An optional texture of a material: RGBA8, row 0 at the top; sampled with LINEAR filtering,
+// no mipmaps, REPEAT wrapping, from TEXCOORD_`texCoord`; `transform` writes a
+// KHR_texture_transform (offset, rotation, scale).
+struct BuilderTexture {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;  // empty: no texture
+  int texCoord = 0;
+  bool transform = false;
+  glm::vec2 offset{0.0f}, scale{1.0f};
+  float rotation = 0.0f;
+};
+
 struct BuilderMaterial {
   glm::vec4 baseColor{1.0f};
   float metallic = 0.0f;
   float roughness = 1.0f;
   glm::vec3 emissive{0.0f};
   bool doubleSided = false;
-  // Optional base-colour texture: sRGB RGBA8, row 0 at the top; sampled with LINEAR
-  // filtering, no mipmaps, REPEAT wrapping.
+  // Optional base-colour texture (sRGB).
   int textureWidth = 0, textureHeight = 0;
   std::vector<std::uint8_t> textureRgba;
+  // The other core textures, and what only tests of the loader write.
+  BuilderTexture metallicRoughness, normal, occlusion, emissiveTexture;
+  float normalScale = 1.0f, occlusionStrength = 1.0f;
+  std::string alphaMode = "OPAQUE";
+  float alphaCutoff = 0.5f;
+  float emissiveStrength = 1.0f;  // written as KHR_materials_emissive_strength when not 1
+  bool unlit = false;             // KHR_materials_unlit
 };
 
 class GltfBuilder {
@@ -35,6 +53,8 @@ class GltfBuilder {
   int addBox(glm::vec3 centre, glm::vec3 size, int material, glm::vec4 rotation = {0, 0, 0, 1});
   int addSphere(glm::vec3 centre, float diameter, int material, int segments = 24);
   int addPlane(glm::vec3 centre, glm::vec2 size, int material);
+  // The plane above with a second UV set, TEXCOORD_1 = (1 − u, v) (a mirrored copy).
+  int addPlaneWithSecondUvs(glm::vec3 centre, glm::vec2 size, int material);
   void addLight(const Light& light);
   void addPerspectiveCamera(glm::vec3 eye, glm::vec3 target, float yfovRadians);
   void addOrthographicCamera(glm::vec3 eye, glm::vec3 target, float xmag, float ymag);

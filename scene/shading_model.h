@@ -19,10 +19,25 @@
 //   specular  ks = mix(0.04, baseColour, metallic) · (metallic + (1 − metallic)(1 − roughness))
 //   exponent  n  = clamp(2/α² − 2, 1, kMaxPhongExponent),  α = roughness²
 // so a fully rough (roughness 1) non-metal is pure Lambert with ks = 0, the default material.
-// baseColour = baseColorFactor · baseColorTexture (decoded sRGB → linear) · COLOR_0.
+// Per pixel, from the material (scene/scene.h) and its textures, each sampled at its UV set
+// through its KHR_texture_transform:
+//   baseColour = baseColorFactor · baseColorTexture (decoded sRGB → linear) · COLOR_0
+//   metallic   = metallicFactor · B,  roughness = roughnessFactor · G  (metallicRoughnessTexture)
+//   occlusion  = 1 + strength · (R − 1)                                (occlusionTexture)
+//   emissive   = emissiveFactor · emissiveStrength · emissiveTexture (decoded sRGB → linear)
+//   N          = normalize(TBN · ((2·normalTexture − 1) · (scale, scale, 1))), T the tangent,
+//                B = cross(N, T) · w, when a normal texture is bound; else the interpolated
+//                normal. Flipped on the back of a double-sided surface.
+// MASK materials discard pixels whose alpha is below alphaCutoff. KHR_materials_unlit
+// materials (and points and lines without normals) show their base colour, unlit.
 //
 // Outgoing radiance towards the viewer V (unit, from P to the eye), R = reflect(−l, N):
-//   L = ambient · a + emissive + Σ_lights (a/π + ks · (n + 2)/(2π) · max(R·V, 0)^n) · E
+//   L = ambient · (a + ks) · occlusion + emissive
+//       + Σ_lights (a/π + ks · (n + 2)/(2π) · max(R·V, 0)^n) · E
+// The ambient term is what a uniform environment of radiance `ambient` gives: the Lambert
+// lobe reflects a of it, the normalised Phong lobe about ks (its normalisation makes the
+// lobe integrate to 1 about the mirror direction, less where it dips below the horizon), so
+// metals, whose a is 0, are lit by it too.
 // No shadows: every light is visible from every point (as in the design documents).
 // Double-sided materials shade back faces with the flipped normal; single-sided back faces
 // are culled.
@@ -79,6 +94,11 @@ inline double rangeWindow(double distance, double range) {
   const double r = distance / range;
   const double w = std::clamp(1.0 - r * r * r * r, 0.0, 1.0);
   return w * w;
+}
+
+// The light-independent term: ambient · (a + ks) · occlusion.
+inline glm::dvec3 ambientRadiance(const PhongMaterial& m, glm::dvec3 ambient, double occlusion) {
+  return ambient * (m.albedo + m.specular) * occlusion;
 }
 
 // The bracket (a/π + ks·(n+2)/(2π)·max(R·V,0)^n) of the sum above: radiance per irradiance.

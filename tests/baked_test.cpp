@@ -53,6 +53,9 @@ TEST(BakedFile, ReadsBackWhatWasBaked) {
       EXPECT_EQ(c.positions, a.positions);
       EXPECT_EQ(c.normals, a.normals);
       EXPECT_EQ(c.texcoords, a.texcoords);
+      EXPECT_EQ(c.texcoords1, a.texcoords1);
+      EXPECT_EQ(c.tangents, a.tangents);
+      EXPECT_EQ(c.mode, a.mode);
       EXPECT_EQ(c.colours, a.colours);
       EXPECT_EQ(c.indices, a.indices);
       EXPECT_EQ(c.material, a.material);
@@ -69,6 +72,10 @@ TEST(BakedFile, ReadsBackWhatWasBaked) {
     EXPECT_EQ(r.materials[i].baseColorTexture, s.materials[i].baseColorTexture);
     EXPECT_EQ(r.materials[i].roughness, s.materials[i].roughness);
     EXPECT_EQ(r.materials[i].metallic, s.materials[i].metallic);
+    for (int k = 0; k < Material::kTextureSlots; ++k)
+      EXPECT_EQ(r.materials[i].slot(k), s.materials[i].slot(k));
+    EXPECT_EQ(r.materials[i].alphaMode, s.materials[i].alphaMode);
+    EXPECT_EQ(r.materials[i].unlit, s.materials[i].unlit);
   }
   ASSERT_EQ(r.textures.size(), s.textures.size());
   ASSERT_FALSE(s.textures.empty());
@@ -165,9 +172,11 @@ TEST(BakedFile, DamagedAndForeignFilesAreRefused) {
   lastByte.back() ^= 0x01;
   cases.push_back({"last-bit", lastByte, "checksum mismatch: the file is damaged"});
   std::string version = bytes;
-  version[9] ^= 0x01;  // version 1 + 256
-  cases.push_back(
-      {"version", version, "baked format version 257, expected 1; bake the scene again"});
+  version[9] ^= 0x01;  // the version + 256
+  cases.push_back({"version", version,
+                   "baked format version " + std::to_string(kBakedFormatVersion + 256) +
+                       ", expected " + std::to_string(kBakedFormatVersion) +
+                       "; bake the scene again"});
   std::string magic = bytes;
   magic[0] = 'X';
   cases.push_back({"magic", magic, "not a manylight baked file (no MLBAKE magic)"});

@@ -1,5 +1,6 @@
 #include "tests/oracle.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -11,12 +12,13 @@ namespace {
 
 struct Triangle {
   glm::dvec3 p[3], n[3];
-  glm::dvec2 uv[3];
+  glm::dvec4 tangent[3];  // world-space xyz, w handedness (mirroring applied); 0 where absent
+  glm::dvec2 uv[2][3];    // TEXCOORD_0, TEXCOORD_1
   glm::dvec4 colour[3];
   int material;
   int surface;
   bool mirrored;
-  bool textured;
+  bool hasUv[2];
 };
 
 struct Hit {
@@ -26,8 +28,10 @@ struct Hit {
   bool front = true;
 };
 
-// Möller–Trumbore; culls back faces of single-sided materials as the rasteriser does.
-void intersect(const Triangle& tri, glm::dvec3 o, glm::dvec3 d, bool doubleSided, Hit& hit) {
+// Möller–Trumbore, for hits beyond `after`; culls back faces of single-sided materials as
+// the rasteriser does.
+void intersect(const Triangle& tri, glm::dvec3 o, glm::dvec3 d, bool doubleSided, double after,
+               Hit& hit) {
   const glm::dvec3 e1 = tri.p[1] - tri.p[0], e2 = tri.p[2] - tri.p[0];
   const glm::dvec3 pv = glm::cross(d, e2);
   const double det = glm::dot(e1, pv);
@@ -43,11 +47,12 @@ void intersect(const Triangle& tri, glm::dvec3 o, glm::dvec3 d, bool doubleSided
   const double v = glm::dot(d, qv) * inv;
   if (v < 0.0 || u + v > 1.0) return;
   const double t = glm::dot(e2, qv) * inv;
-  if (t <= 0.0 || t >= hit.t) return;
+  if (t <= after || t >= hit.t) return;
   hit = {t, &tri, u, v, front};
 }
 
-// GL_LINEAR sampling of an sRGB texture at level 0: texels decoded to linear, then filtered.
+// GL_LINEAR sampling at level 0: texels decoded to linear (sRGB for colour textures, codes /
+// 255 for data), then filtered.
 glm::dvec4 sampleBilinear(const Texture& tex, glm::dvec2 uv) {
   auto wrap = [](int i, int n, bool repeat, bool mirror) {
     if (mirror) {
@@ -62,7 +67,8 @@ glm::dvec4 sampleBilinear(const Texture& tex, glm::dvec2 uv) {
     x = wrap(x, tex.width, tex.repeatS, tex.mirrorS);
     y = wrap(y, tex.height, tex.repeatT, tex.mirrorT);
     const std::uint8_t* p = &tex.rgba[(std::size_t(y) * tex.width + x) * 4];
-    return glm::dvec4(decodeSrgb8(p[0]), decodeSrgb8(p[1]), decodeSrgb8(p[2]), p[3] / 255.0);
+    auto decode = [&](std::uint8_t c) { return tex.srgb ? decodeSrgb8(c) : c / 255.0; };
+    return glm::dvec4(decode(p[0]), decode(p[1]), decode(p[2]), p[3] / 255.0);
   };
   const double x = uv.x * tex.width - 0.5, y = uv.y * tex.height - 0.5;
   const double fx = std::floor(x), fy = std::floor(y);
@@ -80,26 +86,77 @@ std::vector<Triangle> worldTriangles(const Scene& scene) {
     const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
     const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
     for (const Primitive& prim : scene.meshes[inst.mesh].primitives) {
-      const Material m = prim.material >= 0 ? scene.materials[prim.material] : defaultMaterial();
+      if (prim.mode != PrimitiveMode::Triangles) continue;
+      const std::vector<glm::vec2>* uvs[2] = {&prim.texcoords, &prim.texcoords1};
       for (std::size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
         Triangle t;
         for (int k = 0; k < 3; ++k) {
           const std::uint32_t v = prim.indices[i + k];
           t.p[k] = glm::dvec3(world * glm::dvec4(glm::dvec3(prim.positions[v]), 1.0));
           t.n[k] = normalMatrix * glm::dvec3(prim.normals[v]);
-          t.uv[k] = prim.texcoords.empty() ? glm::dvec2(0.0) : glm::dvec2(prim.texcoords[v]);
+          const glm::dvec4 tan =
+              prim.tangents.empty() ? glm::dvec4(0.0) : glm::dvec4(prim.tangents[v]);
+          t.tangent[k] = glm::dvec4(glm::dmat3(world) * glm::dvec3(tan), mirrored ? -tan.w : tan.w);
+          for (int set = 0; set < 2; ++set) {
+            t.uv[set][k] = uvs[set]->empty() ? glm::dvec2(0.0) : glm::dvec2((*uvs[set])[v]);
+          }
           t.colour[k] = prim.colours.empty() ? glm::dvec4(1.0) : glm::dvec4(prim.colours[v]);
         }
         t.material = prim.material;
         t.surface = surface;
         t.mirrored = mirrored;
-        t.textured = m.baseColorTexture >= 0 && !prim.texcoords.empty();
+        for (int set = 0; set < 2; ++set) t.hasUv[set] = !uvs[set]->empty();
         tris.push_back(t);
       }
       ++surface;
     }
   }
   return tris;
+}
+
+// A hit's interpolated attributes and its material's values there, as glsl/gbuffer.frag
+// computes them.
+struct SurfacePoint {
+  glm::dvec4 base;  // base colour and alpha
+  glm::dvec3 normal;
+  double metallic, roughness, occlusion;
+  glm::dvec3 emissive;
+};
+
+SurfacePoint surfaceAt(const Scene& scene, const Material& m, const Hit& hit) {
+  const Triangle& t = *hit.tri;
+  const double b[3] = {1.0 - hit.b1 - hit.b2, hit.b1, hit.b2};
+  auto lerp = [&](const auto& v) { return b[0] * v[0] + b[1] * v[1] + b[2] * v[2]; };
+  auto sample = [&](const TextureRef& ref, glm::dvec4 none) {
+    if (ref.texture < 0 || !t.hasUv[ref.texCoord]) return none;
+    const glm::dvec2 uv = lerp(t.uv[ref.texCoord]);
+    const glm::dvec3 moved = glm::dmat3(ref.transform) * glm::dvec3(uv, 1.0);
+    return sampleBilinear(scene.textures[ref.texture], glm::dvec2(moved));
+  };
+  SurfacePoint s;
+  s.base =
+      glm::dvec4(m.baseColorFactor) * lerp(t.colour) * sample(m.baseColorTexture, glm::dvec4(1.0));
+  const glm::dvec4 mr = sample(m.metallicRoughnessTexture, glm::dvec4(1.0));
+  s.metallic = m.metallic * mr.b;
+  s.roughness = m.roughness * mr.g;
+  s.occlusion = 1.0 + m.occlusionStrength * (sample(m.occlusionTexture, glm::dvec4(1.0)).r - 1.0);
+  s.emissive = glm::dvec3(m.emissive) * glm::dvec3(sample(m.emissiveTexture, glm::dvec4(1.0)));
+  glm::dvec3 n = glm::normalize(lerp(t.n));
+  const glm::dvec4 tangent = lerp(t.tangent);
+  if (m.normalTexture.texture >= 0 && t.hasUv[m.normalTexture.texCoord] &&
+      glm::dot(glm::dvec3(tangent), glm::dvec3(tangent)) > 0.0) {
+    const glm::dvec3 tn =
+        glm::normalize(glm::dvec3(tangent) - n * glm::dot(n, glm::dvec3(tangent)));
+    const glm::dvec3 bn = glm::cross(n, tn) * (tangent.w < 0.0 ? -1.0 : 1.0);
+    glm::dvec3 mapped =
+        glm::dvec3(sample(m.normalTexture, glm::dvec4(0.5, 0.5, 1.0, 1.0))) * 2.0 - 1.0;
+    mapped.x *= m.normalScale;
+    mapped.y *= m.normalScale;
+    const glm::dvec3 perturbed = glm::dmat3(tn, bn, n) * mapped;
+    if (glm::dot(perturbed, perturbed) > 0.0) n = glm::normalize(perturbed);
+  }
+  s.normal = m.doubleSided && !hit.front ? -n : n;
+  return s;
 }
 
 }  // namespace
@@ -147,36 +204,39 @@ OracleImage renderOracle(const Scene& scene, const Camera& camera, const std::ve
         origin = eye;
         dir = glm::normalize(unproject(0.0) - eye);
       }
+      // The nearest hit that a MASK material's cutoff does not discard.
       Hit hit;
-      for (const Triangle& t : tris) {
-        const bool doubleSided = t.material >= 0 && scene.materials[t.material].doubleSided;
-        intersect(t, origin, dir, doubleSided, hit);
+      SurfacePoint sp;
+      const Material* m = nullptr;
+      for (double after = 0.0;;) {
+        hit = Hit{};
+        for (const Triangle& t : tris) {
+          const bool doubleSided = t.material >= 0 && scene.materials[t.material].doubleSided;
+          intersect(t, origin, dir, doubleSided, after, hit);
+        }
+        if (!hit.tri) break;
+        m = hit.tri->material >= 0 ? &scene.materials[hit.tri->material] : &fallback;
+        sp = surfaceAt(scene, *m, hit);
+        if (m->alphaMode != AlphaMode::Mask || sp.base.a >= m->alphaCutoff) break;
+        after = hit.t;
       }
       if (!hit.tri) continue;
-      const Triangle& t = *hit.tri;
-      const double b0 = 1.0 - hit.b1 - hit.b2;
       const glm::dvec3 p = origin + hit.t * dir;
-      glm::dvec3 n = glm::normalize(b0 * t.n[0] + hit.b1 * t.n[1] + hit.b2 * t.n[2]);
-      const Material& m = t.material >= 0 ? scene.materials[t.material] : fallback;
-      if (m.doubleSided && !hit.front) n = -n;
-      glm::dvec4 base = glm::dvec4(m.baseColorFactor) *
-                        (b0 * t.colour[0] + hit.b1 * t.colour[1] + hit.b2 * t.colour[2]);
-      if (t.textured) {
-        base *= sampleBilinear(scene.textures[m.baseColorTexture],
-                               b0 * t.uv[0] + hit.b1 * t.uv[1] + hit.b2 * t.uv[2]);
-      }
-      const shading::PhongMaterial phong =
-          shading::phongFromMetallicRoughness(glm::dvec3(base), m.metallic, m.roughness);
-      const glm::dvec3 v = view.orthographic ? -forward : glm::normalize(eye - p);
-      glm::dvec3 radiance = ambient * phong.albedo + glm::dvec3(m.emissive);
-      for (const Light& light : lights) {
-        glm::dvec3 l;
-        const glm::dvec3 e = shading::irradiance(light, p, n, l);
-        radiance += shading::brdf(phong, n, l, v) * e;
+      glm::dvec3 radiance = glm::dvec3(sp.base);
+      if (!m->unlit) {
+        const shading::PhongMaterial phong =
+            shading::phongFromMetallicRoughness(glm::dvec3(sp.base), sp.metallic, sp.roughness);
+        const glm::dvec3 v = view.orthographic ? -forward : glm::normalize(eye - p);
+        radiance = shading::ambientRadiance(phong, ambient, sp.occlusion) + sp.emissive;
+        for (const Light& light : lights) {
+          glm::dvec3 l;
+          const glm::dvec3 e = shading::irradiance(light, p, sp.normal, l);
+          radiance += shading::brdf(phong, sp.normal, l, v) * e;
+        }
       }
       float* px = out.image.pixel(x, y);
       px[0] = float(radiance.r), px[1] = float(radiance.g), px[2] = float(radiance.b), px[3] = 1.0f;
-      out.surface[std::size_t(y) * width + x] = t.surface;
+      out.surface[std::size_t(y) * width + x] = hit.tri->surface;
     }
   }
   return out;

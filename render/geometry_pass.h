@@ -1,0 +1,38 @@
+#pragma once
+// The deferred path's first pass: every opaque and masked primitive into the G-buffer, with
+// its material's factors and textures (glsl/gbuffer.frag).
+#include <array>
+#include <glm/glm.hpp>
+
+#include "gl/objects.h"
+#include "render/gbuffer.h"
+#include "render/gpu_scene.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+namespace manylight {
+
+class GeometryPass {
+ public:
+  // Compiles (or takes the context's cached) program; needs a current context.
+  GeometryPass();
+
+  // Clears `gbuffer` and draws `scene` (uploaded as `gpu`) into it, seen through `view`,
+  // the ambient radiance `ambient` added to every lit surface.
+  void draw(const Scene& scene, const GpuScene& gpu, const GBuffer& gbuffer, const View& view,
+            glm::vec3 ambient) const;
+
+ private:
+  struct SlotUniforms {
+    GLint bound, secondSet, transform;
+  };
+  void setMaterial(const Material& m, const GpuScene& gpu, const GpuScene::Draw& d) const;
+
+  const gl::Program& program_;  // kept by the context
+  GLint viewProjection_, ambient_, model_, normalMatrix_, baseColorFactor_, metallic_, roughness_,
+      emissive_, normalScale_, occlusionStrength_, alphaCutoff_, unlit_, doubleSided_, mirrored_,
+      pointSize_;
+  std::array<SlotUniforms, Material::kTextureSlots> slots_;
+};
+
+}  // namespace manylight
