@@ -1,8 +1,8 @@
 #pragma once
 // The far field of a shared tile cut (render/tile_cuts.h): the cut's directional, point and
-// spot entries that light every pixel of the tile from in front, folded into one function of
-// the pixel that is linear in its position and normal, so a pixel evaluates them all at
-// the cost of about six entries.
+// spot entries that light every pixel of the tile from in front and from within their range,
+// folded into one function of the pixel that is linear in its position and normal, so a
+// pixel evaluates them all at the cost of about six entries.
 //
 // A Lambert pixel at x with normal n gets from a point entry of intensity I (RGB) at p
 //   I · max(n·(p − x), 0) · W(|p − x|²) / |p − x|³,   W the range window (glsl/shading.glsl).
@@ -13,7 +13,10 @@
 // I · l to F exactly (its term n·l does not depend on x).
 //
 // The first-order remainder is at most ½ sup‖D²f‖ |x − c|² along the segment from c to x,
-// inside the tile's box. With r the distance from p to the box and a = 1/range² (0: none):
+// inside the tile's box. An entry whose range sphere cuts the box does not fold (W changes
+// form at the range), and one beyond its range from the whole box gives nothing
+// (kZeroEntry), so W has one formula over the box. With r the distance from p to the box
+// and a = 1/range² (0: none):
 //   ‖D²f‖ ≤ 6/r⁴ + 15.4·a/r² + 32·a²
 // (the 6/r⁴ of p/|p|³'s second derivative, the third of 1/r; the rest from |W'| ≤ 1.54·a,
 // |W''| ≤ 8·a², and a ≤ 1/r² wherever W is not 0). So the entry's error grows by
@@ -35,7 +38,7 @@
 // Where the cone is constant over the whole tile (all its light through, or none), S f
 // has the point light's bound; a spot with a hard edge (k infinite) does not fold.
 // T is computed, in single precision, by foldBounds (render/node_lanes.h), which also says
-// which entries light every point of the group from in front.
+// which entries light every point of the group from in front and within their range.
 //
 // Texels (4 words, float bits), kFarFieldTexels of them: c; F per channel R, G, B; then
 // per channel the three columns of J.

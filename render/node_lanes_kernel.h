@@ -213,8 +213,8 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
 
 // The far field's linearisation bound T per unit albedo and intensity (render/far_field.h)
 // for lanes [l, l + width of V) of `in`, or −1 where the entry does not fold: a directional
-// or point light that does not light every point of the region from in front, a spot with a
-// hard edge, or a bound that overflows.
+// or point light that does not light every point of the region from in front, a light whose
+// range sphere cuts the region, a spot with a hard edge, or a bound that overflows.
 MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLanes& in, int l,
                                             float* out) {
   constexpr float kPi = 3.14159265358979323846f;
@@ -239,7 +239,7 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
     dMax[c] = rep[c] - g.pMin[c];
   }
   const VectorBox box = vectorBox(dMin, dMax);
-  const V d2Min = box.d2Min;
+  const V d2Min = box.d2Min, d2Max = box.d2Max;
   const SphereAngles sphere = sphereAngles(g.axis, box);
   const auto pointFront =
       d2Min > 0.0f && widenDown(vmax(boxLower(g.axis, box), sphereLower(sphere)), g) > 0.0f;
@@ -270,8 +270,10 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
   const V sine = cosine > 0.0f ? vsqrt(1.0f - cosine * cosine) : one;
   const auto hardEdge = !(vabs(scale) <= 3.40282347e+38f);
 
-  // ‖D²f‖ (far_field.h), then T.
+  // ‖D²f‖ (far_field.h), then T; the bound is taken only where the whole region is within
+  // the range (a·d⁺² < 1).
   const V a = load(in.repInvRange2 + l);
+  const auto withinRange = a == 0.0f || a * d2Max < 1.0f;
   const V rMin4 = d2Min * d2Min;
   V second = 6.0f / rMin4 + 15.4f * a / d2Min + 32.0f * a * a;
   const V q = scale * sine;
@@ -279,7 +281,8 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
                      6.16f * slope * q * a / d2Min;
   second = spot && varies ? second + coneTerm : second;
   const V bound = 0.5f * second * r.h2 / kPi;
-  const auto folds = pointFront && !(spot && hardEdge) && vabs(bound) <= 3.40282347e+38f;
+  const auto folds =
+      pointFront && withinRange && !(spot && hardEdge) && vabs(bound) <= 3.40282347e+38f;
 
   // Entries that give nothing at any point of the region (kZeroEntry): the light behind every
   // normal (its direction at least 90° + γ from the axis: the box's sphere seen from it, for a
