@@ -25,7 +25,7 @@ float pointFalloff(vec4 a, vec3 p, vec3 n, out vec3 l) {
   l = toLight * invD;
   float x = d2 * a.w;  // (d / range)², 0 without range
   float window = clamp(1.0 - x * x, 0.0, 1.0);
-  return max(dot(n, l), 0.0) * window * window * invD * invD;
+  return max(dot(n, l), 0.0) * window * invD * invD;
 }
 
 // Irradiance at p from point light i, and l.

@@ -8,10 +8,13 @@
 //   lower = I · albedo/π · cos⁻ · window⁻(d⁺)/d⁺²   (0 for spot nodes)
 // with d⁻, d⁺ the nearest and farthest distances from p to the node's box, cos⁺ ≥ the
 // largest and cos⁻ ≤ the smallest cosine between the normal and a direction into the box
-// (cosᵣ⁺ likewise about the mirror direction), window⁻ using the smallest range. p inside a
-// box: the upper bound is unbounded, and the node is always refined. Directional trees use
-// p = 0 and no distance term (their boxes hold directions). Both a node's estimate and its
-// true contribution lie in [lower, upper], so its error is at most upper − lower.
+// (cosᵣ⁺ likewise about the mirror direction), window⁻ using the smallest range. The window
+// clamp(1 − (d/range)⁴, 0, 1) is non-increasing in d and non-decreasing in range, and so is
+// window/d² in d: over the box it is at most window(d⁻)/d⁻² with the largest range and at
+// least window⁻(d⁺)/d⁺². p inside a box: the upper bound is unbounded, and the node is
+// always refined. Directional trees use p = 0 and no distance term (their boxes hold
+// directions). Both a node's estimate and its true contribution lie in [lower, upper], so
+// its error is at most upper − lower.
 // I is the node's decoded intensity Ĩ widened by the coding's slack (bake/node_colour.h):
 // Ĩ + η·max(Ĩ) + ζ in the upper bound, Ĩ − η·max(Ĩ) − ζ in the lower, so the bounds hold
 // for the exact intensity although the estimate uses Ĩ. Leaves use their light's exact colour.
@@ -107,10 +110,10 @@ vec2 sphereCosines(vec3 u, vec3 p, Node n) {
   return vec2(upper, lower);
 }
 
+// The range window clamp(1 − (d²/range²)², 0, 1) (scene/shading_model.h).
 float window(float d2, float invRange2) {
   float x = d2 * invRange2;
-  float w = clamp(1.0 - x * x, 0.0, 1.0);
-  return w * w;
+  return clamp(1.0 - x * x, 0.0, 1.0);
 }
 
 // Whether some light of spot node n may shine on p: some direction from its box to p lies

@@ -1,11 +1,13 @@
 #pragma once
 // The far field of a shared tile cut (render/tile_cuts.h): the cut's directional, point and
-// spot entries that light every pixel of the tile from in front, folded into one function of
-// the pixel that is linear in its position and normal, so a pixel evaluates them all at
-// the cost of about six entries.
+// spot entries that light every pixel of the tile from in front and from within their range,
+// folded into one function of the pixel that is linear in its position and normal, so a
+// pixel evaluates them all at the cost of about six entries.
 //
 // A Lambert pixel at x with normal n gets from a point entry of intensity I (RGB) at p
-//   I · max(n·(p − x), 0) · W(|p − x|²) / |p − x|³,   W the range window (glsl/shading.glsl).
+//   I · max(n·(p − x), 0) · W(|p − x|²) / |p − x|³,   W the range window
+// (scene/shading_model.h) as a function of s = |p − x|²: W(s) = clamp(1 − a²s², 0, 1) with
+// a = 1/range² (0: none).
 // Where n·(p − x) > 0 for every pixel of the tile the clamp never acts, and the sum over
 // such entries is n · Σ I f(x) with f(x) = W(|p − x|²)(p − x)/|p − x|³. The far field keeps
 // that sum to first order about the tile's centre c: per channel, F = Σ I f(c) and the
@@ -13,11 +15,19 @@
 // I · l to F exactly (its term n·l does not depend on x).
 //
 // The first-order remainder is at most ½ sup‖D²f‖ |x − c|² along the segment from c to x,
-// inside the tile's box. With r the distance from p to the box and a = 1/range² (0: none):
-//   ‖D²f‖ ≤ 6/r⁴ + 15.4·a/r² + 32·a²
-// (the 6/r⁴ of p/|p|³'s second derivative, the third of 1/r; the rest from |W'| ≤ 1.54·a,
-// |W''| ≤ 8·a², and a ≤ 1/r² wherever W is not 0). So the entry's error grows by
-//   T = I · ½ (6/r⁴ + 15.4·a/r² + 32·a²) · h² / π   per unit albedo,
+// inside the tile's box, provided f is twice differentiable in the box. It is not at
+// s = 1/a: W/d² has a kink at d = range (its slope jumps from −4/range³ to 0), so an entry
+// whose range sphere cuts the box never folds, and one beyond its range from the whole box
+// gives nothing (kZeroEntry). One whose range holds the whole box (a·s < 1 at its farthest
+// point) has W = 1 − a²s² all over it, and with v = p − x, ρ = |v|:
+//   f = (1 − a²ρ⁴) v/ρ³ = v/ρ³ − a² ρ v.
+// ‖D²(v/ρ³)‖ ≤ 6/ρ⁴ (v/ρ³ is minus the gradient of 1/ρ; its second derivative is the third
+// of 1/ρ). Along a unit direction d, with c = v·d/ρ, D(ρ v)·d = c v + ρ d and
+// D²(ρ v)[d, d] = ((1 − c²)/ρ) v + 2c d, of length √(1 + 6c² − 3c⁴) ≤ 2. With r the distance
+// from p to the box (ρ ≥ r):
+//   ‖D²f‖ ≤ 6/r⁴ + 2·a².
+// So the entry's error grows by
+//   T = I · ½ (6/r⁴ + 2·a²) · h² / π   per unit albedo,
 // h the half-diagonal of the tile's box, and the tile's bounds (U, B) take T in with the
 // node's own bound: the total rule's guarantee is kept.
 //
@@ -29,13 +39,14 @@
 // whose sine is ≤ sin θ (θ the smaller of the outer angle and the box's farthest angle, up
 // to π/2). Along a direction d, |D(axis·u)·d| ≤ sin ψ/r ≤ sin θ/r, and the second
 // derivative of axis·u is −c·β² − 2s·γ·αβ over r² (d = α u + β w, axis = c u + s e,
-// γ = e·w), at most √2/r². With |f| ≤ 1/r², |Df·d| ≤ 2/r³ + 3.08·a/r and q = k·sin θ:
+// γ = e·w), at most √2/r². With |f| ≤ W/ρ² ≤ 1/r², |Df·d| ≤ 2/ρ³ + 2a²ρ ≤ 2/r³ + 2·a/r
+// (|D(ρ v)·d| ≤ 2ρ, and a²ρ ≤ a/ρ where aρ² < 1) and q = k·sin θ:
 //   ‖D²(S f)‖ ≤ |D²S| |f| + 2 |DS| |Df| + ‖D²f‖
-//            ≤ (6 + 1.415·σ'₁·k + 4·σ'₁·q + σ''₁·q²)/r⁴ + (15.4 + 6.16·σ'₁·q)·a/r² + 32·a².
+//            ≤ (6 + 1.415·σ'₁·k + 4·σ'₁·q + σ''₁·q²)/r⁴ + 4·σ'₁·q·a/r² + 2·a².
 // Where the cone is constant over the whole tile (all its light through, or none), S f
 // has the point light's bound; a spot with a hard edge (k infinite) does not fold.
 // T is computed, in single precision, by foldBounds (render/node_lanes.h), which also says
-// which entries light every point of the group from in front.
+// which entries light every point of the group from in front and within their range.
 //
 // Texels (4 words, float bits), kFarFieldTexels of them: c; F per channel R, G, B; then
 // per channel the three columns of J.

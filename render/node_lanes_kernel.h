@@ -13,11 +13,12 @@ MANYLIGHT_INLINE inline V clampLanes(V v, float lo, float hi) {
   return v < lo ? splat(lo) : (hi < v ? splat(hi) : v);
 }
 
-// The range window clamp(1 − (d²/range²)², 0, 1)² (glsl/shading.glsl).
+// The range window clamp(1 − (d²/range²)², 0, 1) (scene/shading_model.h): non-increasing in
+// d² and in 1/range², so nodeBoundLanes' window(d⁻)/d⁻² with the largest range bounds a
+// node's lights from above and window(d⁺)/d⁺² with the smallest range from below.
 MANYLIGHT_INLINE inline V windowLanes(V d2, V invRange2) {
   const V x = d2 * invRange2;
-  const V w = clampLanes(1.0f - x * x, 0.0f, 1.0f);
-  return w * w;
+  return clampLanes(1.0f - x * x, 0.0f, 1.0f);
 }
 
 MANYLIGHT_INLINE inline V maxOfLanes(const V v[3]) { return vmax(v[0], vmax(v[1], v[2])); }
@@ -213,8 +214,9 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
 
 // The far field's linearisation bound T per unit albedo and intensity (render/far_field.h)
 // for lanes [l, l + width of V) of `in`, or −1 where the entry does not fold: a directional
-// or point light that does not light every point of the region from in front, a spot with a
-// hard edge, or a bound that overflows.
+// or point light that does not light every point of the region from in front, a light whose
+// range sphere cuts the region (its window has a kink there), a spot with a hard edge, or a
+// bound that overflows.
 MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLanes& in, int l,
                                             float* out) {
   constexpr float kPi = 3.14159265358979323846f;
@@ -239,7 +241,7 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
     dMax[c] = rep[c] - g.pMin[c];
   }
   const VectorBox box = vectorBox(dMin, dMax);
-  const V d2Min = box.d2Min;
+  const V d2Min = box.d2Min, d2Max = box.d2Max;
   const SphereAngles sphere = sphereAngles(g.axis, box);
   const auto pointFront =
       d2Min > 0.0f && widenDown(vmax(boxLower(g.axis, box), sphereLower(sphere)), g) > 0.0f;
@@ -270,16 +272,19 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
   const V sine = cosine > 0.0f ? vsqrt(1.0f - cosine * cosine) : one;
   const auto hardEdge = !(vabs(scale) <= 3.40282347e+38f);
 
-  // ‖D²f‖ (far_field.h), then T.
+  // ‖D²f‖ (far_field.h), then T; the bound holds only where the whole region is within the
+  // range (a·d⁺² < 1: no point of it beyond the window's kink).
   const V a = load(in.repInvRange2 + l);
+  const auto withinRange = a == 0.0f || a * d2Max < 1.0f;
   const V rMin4 = d2Min * d2Min;
-  V second = 6.0f / rMin4 + 15.4f * a / d2Min + 32.0f * a * a;
+  V second = 6.0f / rMin4 + 2.0f * a * a;
   const V q = scale * sine;
   const V coneTerm = (1.415f * slope * scale + 4.0f * slope * q + curvature * q * q) / rMin4 +
-                     6.16f * slope * q * a / d2Min;
+                     4.0f * slope * q * a / d2Min;
   second = spot && varies ? second + coneTerm : second;
   const V bound = 0.5f * second * r.h2 / kPi;
-  const auto folds = pointFront && !(spot && hardEdge) && vabs(bound) <= 3.40282347e+38f;
+  const auto folds =
+      pointFront && withinRange && !(spot && hardEdge) && vabs(bound) <= 3.40282347e+38f;
 
   // Entries that give nothing at any point of the region (kZeroEntry): the light behind every
   // normal (its direction at least 90° + γ from the axis: the box's sphere seen from it, for a
@@ -315,16 +320,16 @@ MANYLIGHT_INLINE inline void farFieldLanes(glm::vec3 centre, const FarLanes& in,
     lane = load(index + l);
   }
   const auto active = lane < float(count);
-  // f = γ v, Df = α v vᵀ + β I: v = p − c, s = |v|², W = (1 − x²)², x = a·s, W' = −4a·x(1 − x²)
-  // (0 for x ≥ 1), γ = W/r³, α = (3W/s − 2W')/r³, β = −W/r³.
+  // f = γ v, Df = α v vᵀ + β I: v = p − c, s = |v|², W = 1 − x², x = a·s, W' = dW/ds = −2a·x
+  // (W and W' 0 for x ≥ 1), γ = W/r³, α = (3W/s − 2W')/r³, β = −W/r³.
   V v[3];
   for (int c = 0; c < 3; ++c) v[c] = load(in.position[c] + l) - centre[c];
   const V s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
   const V r = vsqrt(s), invR3 = 1.0f / (s * r);
   const V a = load(in.invRange2 + l), x = a * s;
   const auto inRange = x < 1.0f;
-  const V w = inRange ? (1.0f - x * x) * (1.0f - x * x) : zero;
-  const V dw = inRange ? -4.0f * a * x * (1.0f - x * x) : zero;
+  const V w = inRange ? 1.0f - x * x : zero;
+  const V dw = inRange ? -2.0f * a * x : zero;
   const V alpha = (3.0f * w / s - 2.0f * dw) * invR3, beta = -w * invR3;
   V value[3], jacobian[3][3];  // jacobian[column][row]
   for (int c = 0; c < 3; ++c) value[c] = w * invR3 * v[c];

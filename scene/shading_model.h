@@ -9,7 +9,8 @@
 // towards the light:
 //   point, spot:  E = intensity · colour · max(N·l, 0) / d² · window(d) · cone(l)
 //   directional:  E = intensity · colour · max(N·l, 0)
-//   window(d) = clamp(1 − (d/range)⁴, 0, 1)²   (the spec's recommendation; no range → 1)
+//   window(d) = clamp(1 − (d/range)⁴, 0, 1)    (the spec's recommendation, as the Khronos
+//                                               Sample Viewer has it; no range → 1)
 //   cone(l)   = smoothstep(cos outer, cos inner, −l·axis)  (spot only, axis = light direction)
 //              with smoothstep(e0, e1, x) = t²(3 − 2t), t = clamp((x − e0)/(e1 − e0), 0, 1),
 //              and e1 − e0 floored at kMinConeWidth so inner == outer gives a hard edge.
@@ -88,12 +89,13 @@ inline double smoothstep(double e0, double e1, double x) {
   return t * t * (3.0 - 2.0 * t);
 }
 
-// window(d) above; range <= 0 or infinite means no range.
+// window(d) above; range <= 0 or infinite means no range. Non-increasing in d and
+// non-decreasing in range (the light trees' bounds rely on both); continuous, with a kink at
+// d = range where its slope −4/range jumps to 0.
 inline double rangeWindow(double distance, double range) {
   if (!(range > 0.0) || std::isinf(range)) return 1.0;
   const double r = distance / range;
-  const double w = std::clamp(1.0 - r * r * r * r, 0.0, 1.0);
-  return w * w;
+  return std::clamp(1.0 - r * r * r * r, 0.0, 1.0);
 }
 
 // The light-independent term: ambient · (a + ks) · occlusion.

@@ -202,7 +202,7 @@ void checkShape(const RegionTerms& r, const FoldLanes& in, int l, float shape, s
     } else {
       const glm::dvec3 v = rep - p;
       const double d2 = glm::dot(v, v), x = d2 * in.repInvRange2[l];
-      const double window = std::pow(std::clamp(1.0 - x * x, 0.0, 1.0), 2.0);
+      const double window = std::clamp(1.0 - x * x, 0.0, 1.0);
       double cone = 1.0;
       if (in.tree[l] == 2.0f) {
         const double t = std::clamp(

@@ -28,7 +28,11 @@ TEST(Shading, RangeWindowAndCone) {
   EXPECT_EQ(shading::rangeWindow(5.0, 0.0), 1.0);
   EXPECT_EQ(shading::rangeWindow(0.0, 2.0), 1.0);
   EXPECT_EQ(shading::rangeWindow(2.0, 2.0), 0.0);
-  EXPECT_NEAR(shading::rangeWindow(1.0, 2.0), std::pow(1.0 - 1.0 / 16.0, 2), 1e-12);
+  EXPECT_DOUBLE_EQ(shading::rangeWindow(1.0, 2.0), 1.0 - 1.0 / 16.0);  // not squared
+  EXPECT_DOUBLE_EQ(shading::rangeWindow(1.5, 2.0), 1.0 - 0.75 * 0.75 * 0.75 * 0.75);
+  EXPECT_EQ(shading::rangeWindow(3.0, 2.0), 0.0);
+  // A kink at the range: slope −4/range inside, 0 beyond.
+  EXPECT_NEAR(shading::rangeWindow(2.0 - 1e-6, 2.0) / 1e-6, 2.0, 1e-5);
   EXPECT_EQ(shading::smoothstep(0.5, 0.8, 0.4), 0.0);
   EXPECT_EQ(shading::smoothstep(0.5, 0.8, 0.9), 1.0);
   EXPECT_NEAR(shading::smoothstep(0.5, 0.8, 0.65), 0.5, 1e-12);
