@@ -28,22 +28,32 @@ gl::Buffer uploadAttribute(const std::vector<T>& data, GLuint location, GLint co
 gl::Texture uploadTexture(const Texture& t) {
   gl::Texture tex;
   glBindTexture(GL_TEXTURE_2D, tex.id());
-  // Decoded from sRGB on the CPU with the exact curve (drivers' sRGB samplers approximate it:
-  // llvmpipe is off by up to 1% in dark codes), stored as half floats (relative error
-  // <= 2^-11), so filtering and mipmaps work on linear values.
-  static const std::array<float, 256> kLinear = [] {
-    std::array<float, 256> table{};
-    for (int i = 0; i < 256; ++i) table[i] = float(decodeSrgb8(std::uint8_t(i)));
-    return table;
-  }();
-  // Data textures (normals, metallic-roughness, occlusion) are linear: codes / 255.
-  std::vector<float> linear(t.rgba.size());
-  for (std::size_t i = 0; i < t.rgba.size(); ++i) {
-    linear[i] = (i % 4 == 3 || !t.srgb) ? t.rgba[i] / 255.0f : kLinear[t.rgba[i]];
-  }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, t.width, t.height, 0, GL_RGBA, GL_FLOAT,
-               linear.data());
+  if (t.srgb) {
+    // Decoded from sRGB on the CPU with the exact curve (drivers' sRGB samplers approximate
+    // it: llvmpipe is off by up to 1% in dark codes), stored as half floats (relative error
+    // <= 2^-11), so filtering and mipmaps work on linear values.
+    static const std::array<float, 256> kLinear = [] {
+      std::array<float, 256> table{};
+      for (int i = 0; i < 256; ++i) table[i] = float(decodeSrgb8(std::uint8_t(i)));
+      return table;
+    }();
+    std::vector<float> linear(t.rgba.size());
+    for (std::size_t i = 0; i < t.rgba.size(); ++i) {
+      linear[i] = (i % 4 == 3) ? t.rgba[i] / 255.0f : kLinear[t.rgba[i]];
+    }
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, t.width, t.height, 0, GL_RGBA, GL_FLOAT,
+                 linear.data());
+  } else {
+    // Data (normals, metallic-roughness, occlusion) is linear: stored as 16-bit codes
+    // c · 257, which the sampler reads as c / 255 exactly (a half float would move a
+    // roughness by up to 2^-11 relative, and a Phong exponent by four times that; 8-bit
+    // storage is exact too, but llvmpipe filters it in 8-bit steps).
+    std::vector<std::uint16_t> wide(t.rgba.begin(), t.rgba.end());
+    for (std::uint16_t& c : wide) c = std::uint16_t(c * 257);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16, t.width, t.height, 0, GL_RGBA, GL_UNSIGNED_SHORT,
+                 wide.data());
+  }
   auto wrap = [](bool repeat, bool mirror) {
     return GLint(mirror ? GL_MIRRORED_REPEAT : repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
   };

@@ -68,8 +68,8 @@ struct GltfBuilder::Impl {
     img.mimeType = "image/png";
     model.images.push_back(img);
     tinygltf::Sampler s;
-    s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    s.magFilter = t.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
+    s.minFilter = t.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
     s.wrapS = s.wrapT = TINYGLTF_TEXTURE_WRAP_REPEAT;
     model.samplers.push_back(s);
     tinygltf::Texture tex;
@@ -165,6 +165,7 @@ int GltfBuilder::addMaterial(const BuilderMaterial& m) {
   mat.alphaCutoff = m.alphaCutoff;
   BuilderTexture base;
   base.width = m.textureWidth, base.height = m.textureHeight, base.rgba = m.textureRgba;
+  base.nearest = m.textureNearest;
   auto info = [&](const BuilderTexture& t, auto& out) {
     if (t.rgba.empty()) return;
     out.index = impl_->addTexture(t);

@@ -10,13 +10,14 @@
 
 namespace manylight {
 
-// An optional texture of a material: RGBA8, row 0 at the top; sampled with LINEAR filtering,
-// no mipmaps, REPEAT wrapping, from TEXCOORD_`texCoord`; `transform` writes a
-// KHR_texture_transform (offset, rotation, scale).
+// An optional texture of a material: RGBA8, row 0 at the top; sampled with LINEAR (or
+// `nearest`) filtering, no mipmaps, REPEAT wrapping, from TEXCOORD_`texCoord`; `transform`
+// writes a KHR_texture_transform (offset, rotation, scale).
 struct BuilderTexture {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgba;  // empty: no texture
   int texCoord = 0;
+  bool nearest = false;
   bool transform = false;
   glm::vec2 offset{0.0f}, scale{1.0f};
   float rotation = 0.0f;
@@ -31,6 +32,7 @@ struct BuilderMaterial {
   // Optional base-colour texture (sRGB).
   int textureWidth = 0, textureHeight = 0;
   std::vector<std::uint8_t> textureRgba;
+  bool textureNearest = false;
   // The other core textures, and what only tests of the loader write.
   BuilderTexture metallicRoughness, normal, occlusion, emissiveTexture;
   float normalScale = 1.0f, occlusionStrength = 1.0f;

@@ -51,8 +51,8 @@ void intersect(const Triangle& tri, glm::dvec3 o, glm::dvec3 d, bool doubleSided
   hit = {t, &tri, u, v, front};
 }
 
-// GL_LINEAR sampling at level 0: texels decoded to linear (sRGB for colour textures, codes /
-// 255 for data), then filtered.
+// GL_LINEAR (or GL_NEAREST) sampling at level 0: texels decoded to linear (sRGB for colour
+// textures, codes / 255 for data), then filtered.
 glm::dvec4 sampleBilinear(const Texture& tex, glm::dvec2 uv) {
   auto wrap = [](int i, int n, bool repeat, bool mirror) {
     if (mirror) {
@@ -70,6 +70,9 @@ glm::dvec4 sampleBilinear(const Texture& tex, glm::dvec2 uv) {
     auto decode = [&](std::uint8_t c) { return tex.srgb ? decodeSrgb8(c) : c / 255.0; };
     return glm::dvec4(decode(p[0]), decode(p[1]), decode(p[2]), p[3] / 255.0);
   };
+  if (!tex.linearMag) {  // NEAREST
+    return texel(int(std::floor(uv.x * tex.width)), int(std::floor(uv.y * tex.height)));
+  }
   const double x = uv.x * tex.width - 0.5, y = uv.y * tex.height - 0.5;
   const double fx = std::floor(x), fy = std::floor(y);
   const int ix = int(fx), iy = int(fy);
