@@ -90,7 +90,7 @@ void main() {
   vec3 albedo = base.rgb * (1.0 - metallic);
   vec3 specular = mix(vec3(kDielectricF0), base.rgb, metallic) *
                   (metallic + (1.0 - metallic) * (1.0 - roughness));
-  float exponent = clamp(2.0 / alpha2 - 2.0, 1.0, kMaxPhongExponent);
+  float exponent = clamp(0.5 / alpha2 - 0.5, 1.0, kMaxPhongExponent);
   float occlusion = 1.0;
   if (uOcclusionSlot.bound) {
     occlusion = 1.0 + uOcclusionStrength * (sampleSlot(uOcclusionSlot, uOcclusionTexture).r - 1.0);

@@ -18,7 +18,11 @@
 // Material (glTF metallic-roughness mapped to Lambert + normalised Phong, one formula):
 //   albedo    a  = baseColour · (1 − metallic)
 //   specular  ks = mix(0.04, baseColour, metallic) · (metallic + (1 − metallic)(1 − roughness))
-//   exponent  n  = clamp(2/α² − 2, 1, kMaxPhongExponent),  α = roughness²
+//   exponent  n  = clamp(1/(2α²) − 1/2, 1, kMaxPhongExponent),  α = roughness²
+// The exponent makes the lobe about R as wide as GGX's about N seen under a headlight: GGX
+// falls with the angle θ between N and H, Phong with the angle between R and V, which is 2θ
+// there, so n is a quarter of the Blinn-Phong exponent 2/α² − 2 that matches GGX; the peaks
+// agree too ((n + 2)/(2π) ≈ 1/(4πα²) = D_GGX(0)/4).
 // so a fully rough (roughness 1) non-metal is pure Lambert with ks = 0, the default material.
 // Per pixel, from the material (scene/scene.h) and its textures, each sampled at its UV set
 // through its KHR_texture_transform:
@@ -74,7 +78,7 @@ inline PhongMaterial phongFromMetallicRoughness(glm::dvec3 baseColour, double me
   m.albedo = baseColour * (1.0 - metallic);
   const glm::dvec3 f0 = glm::mix(glm::dvec3(kDielectricF0), baseColour, metallic);
   m.specular = f0 * (metallic + (1.0 - metallic) * (1.0 - roughness));
-  m.exponent = std::clamp(2.0 / alpha2 - 2.0, 1.0, kMaxPhongExponent);
+  m.exponent = std::clamp(0.5 / alpha2 - 0.5, 1.0, kMaxPhongExponent);
   return m;
 }
 
