@@ -6,6 +6,7 @@
 
 #include "scene/error.h"
 #include "scene/gltf_accessors.h"
+#include "scene/gltf_attributes.h"
 #include "scene/half_edge.h"
 
 namespace manylight::gltf {
@@ -141,16 +142,15 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
     scene_.warnings.push_back(where + ": points and lines (mode " + str(mode) + ") skipped");
     return p;
   }
-  auto attr = [&](const char* name) {
-    auto it = src.attributes.find(name);
-    return it == src.attributes.end() ? -1 : it->second;
-  };
+  // Every attribute and the indices are read through `source`: from the accessors, or from
+  // the primitive's decoded KHR_draco_mesh_compression data.
+  const AttributeSource source(model_, src, where);
+  auto attr = [&](const std::string& name) { return source.accessor(name); };
   if (attr("POSITION") < 0) {
     scene_.warnings.push_back(where + ": no POSITION attribute; skipped");
     return p;
   }
-  p.positions = toVectors<glm::vec3>(readFloats(model_, attr("POSITION"), 3, "POSITION"), 3, true,
-                                     where + " POSITION");
+  p.positions = toVectors<glm::vec3>(source.floats("POSITION", 3), 3, true, where + " POSITION");
   const std::size_t count = p.positions.size();
   auto sameCount = [&](std::size_t n, const char* what) {
     if (n != count) {
@@ -159,8 +159,7 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
     }
   };
   if (attr("NORMAL") >= 0) {
-    p.normals = toVectors<glm::vec3>(readFloats(model_, attr("NORMAL"), 3, "NORMAL"), 3, true,
-                                     where + " NORMAL");
+    p.normals = toVectors<glm::vec3>(source.floats("NORMAL", 3), 3, true, where + " NORMAL");
     sameCount(p.normals.size(), "NORMAL");
   }
   p.material = src.material >= 0 ? material(src.material) : -1;
@@ -170,15 +169,14 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
           : 0;
   const std::string uvName = "TEXCOORD_" + str(texCoordSet);
   if (attr(uvName.c_str()) >= 0) {
-    p.texcoords = toVectors<glm::vec2>(readFloats(model_, attr(uvName.c_str()), 2, uvName), 2,
-                                       false, where + " " + uvName);
+    p.texcoords = toVectors<glm::vec2>(source.floats(uvName, 2), 2, false, where + " " + uvName);
     sameCount(p.texcoords.size(), uvName.c_str());
   }
   if (attr("COLOR_0") >= 0) {
     const int acc = attr("COLOR_0");
     checkIndex(acc, model_.accessors, "accessor");
     const int n = model_.accessors[acc].type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
-    const std::vector<float> f = readFloats(model_, acc, n, "COLOR_0");
+    const std::vector<float> f = source.floats("COLOR_0", n);
     p.colours.resize(f.size() / n);
     for (std::size_t i = 0; i < p.colours.size(); ++i) {
       p.colours[i] = glm::vec4(f[i * n], f[i * n + 1], f[i * n + 2], n == 4 ? f[i * n + 3] : 1.0f);
@@ -186,8 +184,8 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
     sameCount(p.colours.size(), "COLOR_0");
   }
   std::vector<std::uint32_t> idx;
-  if (src.indices >= 0) {
-    idx = readIndices(model_, src.indices);
+  if (source.hasIndices()) {
+    idx = source.indices();
     for (std::uint32_t i : idx) {
       if (i >= count) {
         throw SceneError(where + ": index " + std::to_string(i) + " is out of range (" +
