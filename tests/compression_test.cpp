@@ -5,6 +5,7 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 
@@ -319,6 +320,25 @@ TEST(Meshopt, DecodedBytesAreHeldToTheFileLimit) {
                 ": bufferView 1: EXT_meshopt_compression: the decoded views exceed the limit "
                 "of " +
                 std::to_string(options.maxFileBytes) + " bytes (--max-file-bytes)");
+}
+
+// Seeds for the loader's fuzzer (ci/sanitize.sh), self-contained GLBs reaching every decode
+// path: written into $MANYLIGHT_FUZZ_SEEDS when it is set, else into the test folder; each
+// must load.
+TEST(Compression, FuzzSeedsLoad) {
+  const char* env = std::getenv("MANYLIGHT_FUZZ_SEEDS");
+  const fs::path dir = env ? fs::path(env) : testFolder();
+  const TestMesh mesh = gridMesh(3);
+  const std::pair<const char*, GltfFile> seeds[] = {
+      {"draco-edgebreaker.glb", dracoMeshFile(mesh, true)},
+      {"draco-sequential.glb", dracoMeshFile(mesh, false)},
+      {"meshopt.glb", meshoptMeshFile(mesh, false, false)},
+      {"meshopt-filters-indices.glb", meshoptMeshFile(mesh, true, true)},
+  };
+  for (const auto& [name, file] : seeds) {
+    writeGltf((dir / name).string(), file);
+    EXPECT_EQ(loadError((dir / name).string()), "") << name;
+  }
 }
 
 }  // namespace
