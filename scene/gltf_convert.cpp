@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "scene/error.h"
-#include "scene/gltf_accessors.h"
 #include "scene/gltf_attributes.h"
 #include "scene/half_edge.h"
 
