@@ -11,7 +11,7 @@ packages=(
   libegl-mesa0 libgl1-mesa-dri
   libglm-dev glslang-tools
   libopenimageio-dev openimageio-tools
-  libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   clang libclang-rt-14-dev clang-format
   python3 gnuplot-nox

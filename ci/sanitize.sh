@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # CI: the scene tests and the corpus walk under AddressSanitizer + UndefinedBehaviorSanitizer,
 # then the libFuzzer targets for a bounded time: the glTF loader (FUZZ_SECONDS, seeded with
-# ../shared/scenes), the light list reader and the baked file reader (a third of that each,
-# seeded with small lists and small baked scenes).
+# ../shared/scenes and generated Draco and meshopt GLBs), the light list reader and the baked
+# file reader (a third of that each, seeded with small lists and small baked scenes).
 # Usage: ci/sanitize.sh [FUZZ_SECONDS]   (default 60)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -30,6 +30,8 @@ if [ -d ../shared/scenes ]; then
   find ../shared/scenes -type f \( -name '*.gltf' -o -name '*.glb' \) -size -256k -exec cp -t "$corpus" {} + 2>/dev/null || true
 fi
 cp scenes/*.gltf "$corpus"/
+# Self-contained Draco and meshopt GLBs, so that the fuzzing reaches their decoders.
+MANYLIGHT_FUZZ_SEEDS="$corpus" build-asan/bin/manylight_tests --gtest_filter='Compression.FuzzSeedsLoad' >/dev/null
 # -detect_leaks=0: LeakSanitizer's per-input check itself died with SIGSEGV in its tracer
 # here (an empty "crash" input), which is not a finding; the test run above checks leaks.
 build-asan/bin/manylight_fuzz_gltf_loader -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \

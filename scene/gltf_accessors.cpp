@@ -209,4 +209,15 @@ std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index) 
   return out;
 }
 
+float componentAsFloat(const unsigned char* p, int componentType, bool normalized) {
+  return readComponent(p, componentType, normalized);
+}
+
+ViewBytes bufferViewBytes(const tinygltf::Model& model, int index, const std::string& what) {
+  const std::size_t size = index >= 0 && std::size_t(index) < model.bufferViews.size()
+                               ? model.bufferViews[index].byteLength
+                               : 0;
+  return {checkedView(model, index, 0, size, 1, false, what).data, size};
+}
+
 }  // namespace manylight::gltf

@@ -20,4 +20,16 @@ std::vector<float> readFloats(const tinygltf::Model& model, int index, int compo
 // Reads an index accessor (unsigned byte, short or int scalars).
 std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index);
 
+// One component of glTF type `componentType` at `p` as a float, normalised integers converted
+// as the glTF spec says (as readFloats does).
+float componentAsFloat(const unsigned char* p, int componentType, bool normalized);
+
+// The bytes of bufferView `index`. Throws SceneError naming `what` when the view does not
+// exist or does not lie within its buffer.
+struct ViewBytes {
+  const unsigned char* data;
+  std::size_t size;
+};
+ViewBytes bufferViewBytes(const tinygltf::Model& model, int index, const std::string& what);
+
 }  // namespace manylight::gltf

@@ -6,7 +6,7 @@
 #include <type_traits>
 
 #include "scene/error.h"
-#include "scene/gltf_accessors.h"
+#include "scene/gltf_attributes.h"
 #include "scene/half_edge.h"
 #include "scene/tangents.h"
 
@@ -164,16 +164,15 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
     return p;
   }
   p.mode = modeOf(mode);
-  auto attr = [&](const std::string& name) {
-    auto it = src.attributes.find(name);
-    return it == src.attributes.end() ? -1 : it->second;
-  };
+  // Every attribute and the indices are read through `source`: from the accessors, or from
+  // the primitive's decoded KHR_draco_mesh_compression data.
+  const AttributeSource source(model_, src, where);
+  auto attr = [&](const std::string& name) { return source.accessor(name); };
   if (attr("POSITION") < 0) {
     scene_.warnings.push_back(where + ": no POSITION attribute; skipped");
     return p;
   }
-  p.positions = toVectors<glm::vec3>(readFloats(model_, attr("POSITION"), 3, "POSITION"), 3, true,
-                                     where + " POSITION");
+  p.positions = toVectors<glm::vec3>(source.floats("POSITION", 3), 3, true, where + " POSITION");
   const std::size_t count = p.positions.size();
   auto sameCount = [&](std::size_t n, const std::string& what) {
     if (n != count) {
@@ -184,8 +183,7 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
   auto read = [&](const std::string& name, int n, bool requireFinite, auto& out) {
     using V = typename std::decay_t<decltype(out)>::value_type;
     if (attr(name) < 0) return;
-    out =
-        toVectors<V>(readFloats(model_, attr(name), n, name), n, requireFinite, where + " " + name);
+    out = toVectors<V>(source.floats(name, n), n, requireFinite, where + " " + name);
     sameCount(out.size(), name);
   };
   read("NORMAL", 3, true, p.normals);
@@ -196,11 +194,20 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
   const bool normalMapped =
       p.mode == PrimitiveMode::Triangles && m && m->normalTexture.texture >= 0;
   if (normalMapped && !p.normals.empty()) read("TANGENT", 4, true, p.tangents);
-  readColours(attr("COLOR_0"), p);
-  if (!p.colours.empty()) sameCount(p.colours.size(), "COLOR_0");
+  if (attr("COLOR_0") >= 0) {
+    const int acc = attr("COLOR_0");
+    checkIndex(acc, model_.accessors, "accessor");
+    const int n = model_.accessors[acc].type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+    const std::vector<float> f = source.floats("COLOR_0", n);
+    p.colours.resize(f.size() / n);
+    for (std::size_t i = 0; i < p.colours.size(); ++i) {
+      p.colours[i] = glm::vec4(f[i * n], f[i * n + 1], f[i * n + 2], n == 4 ? f[i * n + 3] : 1.0f);
+    }
+    sameCount(p.colours.size(), "COLOR_0");
+  }
   std::vector<std::uint32_t> idx;
-  if (src.indices >= 0) {
-    idx = readIndices(model_, src.indices);
+  if (source.hasIndices()) {
+    idx = source.indices();
     for (std::uint32_t i : idx) {
       if (i >= count) {
         throw SceneError(where + ": index " + std::to_string(i) + " is out of range (" +
@@ -221,16 +228,6 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
   return p;
 }
 
-void Converter::readColours(int accessor, Primitive& p) const {
-  if (accessor < 0) return;
-  checkIndex(accessor, model_.accessors, "accessor");
-  const int n = model_.accessors[accessor].type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
-  const std::vector<float> f = readFloats(model_, accessor, n, "COLOR_0");
-  p.colours.resize(f.size() / n);
-  for (std::size_t i = 0; i < p.colours.size(); ++i) {
-    p.colours[i] = glm::vec4(f[i * n], f[i * n + 1], f[i * n + 2], n == 4 ? f[i * n + 3] : 1.0f);
-  }
-}
 
 Camera Converter::camera(int index) const {
   const tinygltf::Camera& src = model_.cameras[index];

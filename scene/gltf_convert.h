@@ -38,7 +38,6 @@ class Converter {
 
  private:
   Primitive primitive(int meshIndex, int primIndex);
-  void readColours(int accessor, Primitive& p) const;
 
   const tinygltf::Model& model_;
   Scene& scene_;

@@ -18,6 +18,7 @@
 #include "scene/error.h"
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_convert.h"
+#include "scene/gltf_parse.h"
 #include "scene/image_decode.h"
 
 namespace manylight {
@@ -25,8 +26,9 @@ namespace {
 
 // Extensions whose absence would change what we render; we implement these fully.
 const std::set<std::string> kSupportedRequired = {
-    "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_texture_transform",
-    "KHR_materials_emissive_strength", "KHR_materials_unlit"};
+    "KHR_lights_punctual",           "KHR_mesh_quantization",    "KHR_texture_transform",
+    "KHR_materials_emissive_strength", "KHR_materials_unlit",    "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression"};
 // Required extensions refused with a reason of their own.
 const std::map<std::string, std::string> kRefusedRequired = {
     {"KHR_texture_basisu", "Basis Universal (KTX2) textures have no decoder here"}};
@@ -139,9 +141,8 @@ void checkVersion(const std::string& version, const std::string& minVersion,
   }
 }
 
-// Called when tinygltf fails on a .gltf: reads asset.version, asset.minVersion and
-// extensionsRequired from the JSON, so a file that needs something we lack (Draco, a newer
-// version) is refused for that reason rather than for the parse error it causes.
+// Called when tinygltf fails on a .gltf: refuses a file for an extension or version we lack
+// (from the JSON's asset and extensionsRequired) rather than for the parse error it causes.
 void checkRequirementsInJson(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   const nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
@@ -465,8 +466,8 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     std::string err, warn;
     std::string failure;
     try {
-      const bool ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
-                             : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+      const bool ok = gltf::parseGltfFile(parser, &model, &err, &warn, path, base, binary, files,
+                                          options.maxFileBytes);
       if (!ok) {
         failure = !files.refusal().empty()   ? files.refusal()
                   : !files.missing().empty() ? files.missing()

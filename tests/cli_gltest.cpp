@@ -139,9 +139,9 @@ const BadInput kBadInputs[] = {
     {"version-1.gltf", R"({"asset": {"version": "1.0"}})", "",
      "asset.version '1.0' is not supported, expected 2.x"},
     {"required.gltf",
-     R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_draco_mesh_compression"],
-         "extensionsRequired": ["KHR_draco_mesh_compression"]})",
-     "", "required extension KHR_draco_mesh_compression is not supported"},
+     R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_texture_basisu"],
+         "extensionsRequired": ["KHR_texture_basisu"]})",
+     "", "required extension KHR_texture_basisu is not supported"},
     {"bad-spot.gltf",
      R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
          "extensions": {"KHR_lights_punctual": {"lights": [
