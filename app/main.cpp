@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
       ->add_option("--backend", r.backend,
                    "Context: auto (EGL device, EGL surfaceless, OSMesa), egl, osmesa")
       ->capture_default_str();
-  render->add_option("--ambient", r.ambient, "Ambient radiance R,G,B, multiplied by the albedo")
+  render->add_option("--ambient", r.ambient, "Ambient radiance R,G,B, times albedo + specular")
       ->capture_default_str();
   render->add_option("--exposure", r.exposure, "Exposure in EV: the image is scaled by 2^EV")
       ->capture_default_str();

@@ -228,7 +228,6 @@ Primitive Converter::primitive(int meshIndex, int primIndex) {
   return p;
 }
 
-
 Camera Converter::camera(int index) const {
   const tinygltf::Camera& src = model_.cameras[index];
   Camera c;

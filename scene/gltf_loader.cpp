@@ -18,20 +18,12 @@
 #include "scene/error.h"
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_convert.h"
+#include "scene/gltf_extensions.h"
 #include "scene/gltf_parse.h"
 #include "scene/image_decode.h"
 
 namespace manylight {
 namespace {
-
-// Extensions whose absence would change what we render; we implement these fully.
-const std::set<std::string> kSupportedRequired = {
-    "KHR_lights_punctual",           "KHR_mesh_quantization",    "KHR_texture_transform",
-    "KHR_materials_emissive_strength", "KHR_materials_unlit",    "KHR_draco_mesh_compression",
-    "EXT_meshopt_compression"};
-// Required extensions refused with a reason of their own.
-const std::map<std::string, std::string> kRefusedRequired = {
-    {"KHR_texture_basisu", "Basis Universal (KTX2) textures have no decoder here"}};
 
 std::string oneLine(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
@@ -116,51 +108,6 @@ int nodeLight(const tinygltf::Node& node) {
   if (!v.IsNumber())
     throw SceneError("node '" + node.name + "': KHR_lights_punctual.light is not an index");
   return v.IsInt() ? v.Get<int>() : int(v.Get<double>());
-}
-
-void checkVersion(const std::string& version, const std::string& minVersion,
-                  const std::vector<std::string>& required) {
-  auto major = [](const std::string& v) { return std::atoi(v.c_str()); };
-  auto minor = [](const std::string& v) {
-    const auto dot = v.find('.');
-    return dot == std::string::npos ? 0 : std::atoi(v.c_str() + dot + 1);
-  };
-  if (major(version) != 2) {
-    throw SceneError("asset.version '" + version + "' is not supported, expected 2.x");
-  }
-  if (!minVersion.empty() && (major(minVersion) != 2 || minor(minVersion) > 0)) {
-    throw SceneError("asset.minVersion " + minVersion + " is not supported, expected 2.0");
-  }
-  for (const std::string& ext : required) {
-    const auto refused = kRefusedRequired.find(ext);
-    if (refused != kRefusedRequired.end())
-      throw SceneError("required extension " + ext + " is not supported: " + refused->second);
-    if (!kSupportedRequired.count(ext)) {
-      throw SceneError("required extension " + ext + " is not supported");
-    }
-  }
-}
-
-// Called when tinygltf fails on a .gltf: refuses a file for an extension or version we lack
-// (from the JSON's asset and extensionsRequired) rather than for the parse error it causes.
-void checkRequirementsInJson(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  const nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) return;  // tinygltf reports the syntax error
-  auto str = [](const nlohmann::json& o, const char* key) {
-    const auto it = o.find(key);
-    return it != o.end() && it->is_string() ? it->get<std::string>() : std::string();
-  };
-  const auto asset = j.find("asset");
-  if (asset == j.end() || !asset->is_object()) return;
-  std::vector<std::string> required;
-  const auto req = j.find("extensionsRequired");
-  if (req != j.end() && req->is_array()) {
-    for (const auto& e : *req) {
-      if (e.is_string()) required.push_back(e.get<std::string>());
-    }
-  }
-  checkVersion(str(*asset, "version"), str(*asset, "minVersion"), required);
 }
 
 // Walks the node hierarchy of the default scene, placing meshes, lights and cameras.
@@ -481,16 +428,15 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     // tinygltf treats an unreadable image as a warning; a refused URI is an error all the same.
     if (failure.empty() && !files.refusal().empty()) failure = files.refusal();
     if (!failure.empty()) {
-      if (!binary) checkRequirementsInJson(path);  // throws when the real reason is a requirement
+      if (!binary)
+        gltf::checkRequirementsInJson(path);  // throws when the real reason is a requirement
       throw SceneError(failure);
     }
     // A missing image leaves its textures out; say so.
     if (!files.missing().empty())
       scene.warnings.push_back(files.missing() + "; its textures are left out");
-    checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
-    for (const std::string& ext : model.extensionsUsed) {
-      if (!kSupportedRequired.count(ext)) scene.ignoredExtensions.push_back(ext);
-    }
+    gltf::checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
+    scene.ignoredExtensions = gltf::ignoredExtensions(model.extensionsUsed);
     checkTriangleCount(model, options.maxTriangles);
     gltf::Converter convert(model, scene, glm::radians(options.creaseAngleDegrees));
     checkStructure(model, convert);
