@@ -19,6 +19,7 @@
   X(PFNGLENABLEPROC, glEnable)                                   \
   X(PFNGLDISABLEPROC, glDisable)                                 \
   X(PFNGLBLENDFUNCPROC, glBlendFunc)                             \
+  X(PFNGLBLENDFUNCSEPARATEPROC, glBlendFuncSeparate)             \
   X(PFNGLBLENDEQUATIONPROC, glBlendEquation)                     \
   X(PFNGLDEPTHFUNCPROC, glDepthFunc)                             \
   X(PFNGLDEPTHMASKPROC, glDepthMask)                             \
@@ -47,6 +48,7 @@
   X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)           \
   X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                 \
   X(PFNGLFRAMEBUFFERTEXTURE2DPROC, glFramebufferTexture2D)       \
+  X(PFNGLBLITFRAMEBUFFERPROC, glBlitFramebuffer)                 \
   X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus)   \
   X(PFNGLGENVERTEXARRAYSPROC, glGenVertexArrays)                 \
   X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)           \

@@ -37,7 +37,7 @@ uniform vec3 uAmbient;
 
 out vec4 gPosition;  // xyz world position, w Phong exponent
 out vec4 gNormal;    // xyz unit normal, w 1 where lit
-out vec4 gAlbedo;    // rgb Lambert albedo
+out vec4 gAlbedo;    // rgb Lambert albedo, w alpha (what render/blend_pass.cpp composites by)
 out vec4 gSpecular;  // rgb Phong specular colour
 out vec4 gRadiance;  // rgb ambient · (albedo + specular) · occlusion + emissive, w coverage
 
@@ -71,7 +71,7 @@ void main() {
   if (uUnlit) {
     gPosition = vec4(vWorld, 1.0);
     gNormal = vec4(0.0);
-    gAlbedo = vec4(0.0);
+    gAlbedo = vec4(0.0, 0.0, 0.0, base.a);
     gSpecular = vec4(0.0);
     gRadiance = vec4(base.rgb, 1.0);
     return;
@@ -101,7 +101,7 @@ void main() {
   bool front = gl_FrontFacing != uMirrored;
   gPosition = vec4(vWorld, exponent);
   gNormal = vec4(shadingNormal(front), 1.0);
-  gAlbedo = vec4(albedo, 0.0);
+  gAlbedo = vec4(albedo, base.a);
   gSpecular = vec4(specular, 0.0);
   gRadiance = vec4(uAmbient * (albedo + specular) * occlusion + emissive, 1.0);
 }

@@ -18,6 +18,7 @@ class GBuffer {
   int width() const { return width_; }
   int height() const { return height_; }
   const gl::Texture& target(Target t) const { return targets_[t]; }
+  const gl::Texture& depth() const { return depth_; }
   // Writes all targets (the G-buffer pass).
   const gl::Framebuffer& geometryFramebuffer() const { return geometry_; }
   // Writes only the radiance target, so the lighting passes may sample the others.

@@ -78,13 +78,13 @@ void GeometryPass::setMaterial(const Material& m, const GpuScene& gpu,
 }
 
 void GeometryPass::draw(const Scene& scene, const GpuScene& gpu, const GBuffer& gbuffer,
-                        const View& view, glm::vec3 ambient) const {
+                        const View& view, glm::vec3 ambient, int only) const {
   glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.geometryFramebuffer().id());
   glViewport(0, 0, gbuffer.width(), gbuffer.height());
   const float zero[4] = {0, 0, 0, 0};
   for (int i = 0; i < GBuffer::kTargetCount; ++i) glClearBufferfv(GL_COLOR, i, zero);
   glDepthMask(GL_TRUE);
-  glClear(GL_DEPTH_BUFFER_BIT);
+  if (only < 0) glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
@@ -97,7 +97,9 @@ void GeometryPass::draw(const Scene& scene, const GpuScene& gpu, const GBuffer& 
   glUniform3fv(ambient_, 1, glm::value_ptr(ambient));
   glUniform1f(pointSize_, kPointSize);
   const Material fallback = defaultMaterial();
-  for (const GpuScene::Draw& d : gpu.draws()) {
+  for (std::size_t i = 0; i < gpu.draws().size(); ++i) {
+    const GpuScene::Draw& d = gpu.draws()[i];
+    if (only < 0 ? d.blended : int(i) != only) continue;
     const Material& m = d.material >= 0 ? scene.materials[d.material] : fallback;
     glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(d.model));
     glUniformMatrix3fv(normalMatrix_, 1, GL_FALSE, glm::value_ptr(d.normalMatrix));

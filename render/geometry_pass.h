@@ -1,6 +1,7 @@
 #pragma once
 // The deferred path's first pass: every opaque and masked primitive into the G-buffer, with
-// its material's factors and textures (glsl/gbuffer.frag).
+// its material's factors and textures (glsl/gbuffer.frag); and, one at a time, the blended
+// ones (render/blend_pass.h).
 #include <array>
 #include <glm/glm.hpp>
 
@@ -18,9 +19,11 @@ class GeometryPass {
   GeometryPass();
 
   // Clears `gbuffer` and draws `scene` (uploaded as `gpu`) into it, seen through `view`,
-  // the ambient radiance `ambient` added to every lit surface.
+  // the ambient radiance `ambient` added to every lit surface: every draw but the blended
+  // ones (only < 0), or draw `only` alone, over the depth the G-buffer holds (the colour
+  // targets cleared, the depth kept).
   void draw(const Scene& scene, const GpuScene& gpu, const GBuffer& gbuffer, const View& view,
-            glm::vec3 ambient) const;
+            glm::vec3 ambient, int only = -1) const;
 
  private:
   struct SlotUniforms {

@@ -97,6 +97,9 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
                    GL_STATIC_DRAW);
       g.indexCount = GLsizei(p.indices.size());
       g.material = p.material;
+      Bounds b;
+      for (const glm::vec3& v : p.positions) b.add(v);
+      g.centre = 0.5f * (b.min + b.max);
     }
   }
   glBindVertexArray(0);
@@ -111,9 +114,13 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
                        (!m.unlit && (mapped || shading::hasSpecularTerm(m.metallic, m.roughness)));
       }
       const glm::mat3 linear(inst.world);
+      const bool blended =
+          g.material >= 0 && scene.materials[g.material].alphaMode == AlphaMode::Blend;
+      hasBlended_ = hasBlended_ || blended;
       draws_.push_back({&g.vao, g.indexCount, g.mode, g.hasNormals, g.hasTexcoords, g.hasTexcoords1,
                         g.hasTangents, g.hasColours, g.material, inst.world,
-                        glm::transpose(glm::inverse(linear)), glm::determinant(linear) < 0.0f});
+                        glm::transpose(glm::inverse(linear)), glm::determinant(linear) < 0.0f,
+                        blended, glm::vec3(inst.world * glm::vec4(g.centre, 1.0f))});
     }
   }
 

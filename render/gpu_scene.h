@@ -27,6 +27,8 @@ class GpuScene {
     glm::mat4 model;
     glm::mat3 normalMatrix;  // inverse transpose of the model's upper 3×3
     bool mirrored;           // negative determinant
+    bool blended;            // alphaMode BLEND: drawn after the opaque frame is lit
+    glm::vec3 centre;        // world-space centre of the primitive's bounds (blend order)
   };
   const std::vector<Draw>& draws() const { return draws_; }
   const gl::Texture* texture(int index) const { return &textures_[index]; }
@@ -37,6 +39,8 @@ class GpuScene {
   int spotStart() const { return spotStart_; }
   // Whether any drawn material has a Phong specular term (see scene/shading_model.h).
   bool hasSpecular() const { return hasSpecular_; }
+  // Whether any draw is blended (alphaMode BLEND).
+  bool hasBlended() const { return hasBlended_; }
 
  private:
   struct GpuPrimitive {
@@ -47,13 +51,14 @@ class GpuScene {
     bool hasNormals = false, hasTexcoords = false, hasTexcoords1 = false, hasTangents = false,
          hasColours = false;
     int material = -1;
+    glm::vec3 centre{0.0f};  // local-space centre of the bounds
   };
   std::vector<std::vector<GpuPrimitive>> meshes_;
   std::vector<gl::Texture> textures_;
   std::vector<Draw> draws_;
   gl::TextureBuffer lightTexture_;
   int lightCount_ = 0, pointStart_ = 0, spotStart_ = 0;
-  bool hasSpecular_ = false;
+  bool hasSpecular_ = false, hasBlended_ = false;
 };
 
 }  // namespace manylight

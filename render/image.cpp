@@ -31,10 +31,13 @@ void writeImage(const Image& image, const std::string& path, float exposure) {
   if (png) {
     RawImage<std::uint8_t> codes{image.width, image.height, 4, std::vector<std::uint8_t>(n * 4)};
     for (std::size_t i = 0; i < n * 4; ++i) {
-      // Alpha is coverage, not a colour: linear, not encoded.
+      // Alpha is coverage, not a colour: linear, not encoded. Images hold colour premultiplied
+      // by it (as EXR does); PNG's is straight, so partly covered pixels are divided by it.
+      const float alpha = image.rgba[i | 3];
+      const double straight = alpha > 0.0f && alpha < 1.0f ? 1.0 / alpha : 1.0;
       codes.pixels[i] =
           (i % 4 == 3) ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
-                       : encodeSrgb8(image.rgba[i] * scale);
+                       : encodeSrgb8(image.rgba[i] * scale * straight);
     }
     ok = imageIo().writeSrgb8(tmp.c_str(), codes, &reason);
   } else {

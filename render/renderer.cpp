@@ -98,11 +98,25 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   const auto start = std::chrono::steady_clock::now();
   geometry_.draw(scene_, gpu_, gbuffer_, view, settings.ambient);
   glBindVertexArray(emptyVao_.id());
-  int passes = 1;
-  if (lightcuts_) {
-    lightcuts_->light(gpu_, gbuffer_, view, settings.lightcuts);
-  } else {
-    passes = lightReference(view, settings);
+  int passes = 0;
+  auto light = [&] {
+    if (lightcuts_) {
+      lightcuts_->light(gpu_, gbuffer_, view, settings.lightcuts);
+      ++passes;
+    } else {
+      passes += lightReference(view, settings);
+    }
+  };
+  light();
+  // The opaque frame's cut statistics, before blended layers light the G-buffer again.
+  const bool cutStats = stats && lightcuts_ && settings.readCutStats;
+  if (cutStats) stats->cuts = lightcuts_->cutStats();
+  if (gpu_.hasBlended()) {
+    if (!blend_) blend_ = std::make_unique<BlendPass>(gbuffer_.width(), gbuffer_.height());
+    blend_->draw(scene_, gpu_, gbuffer_, view, settings.ambient, geometry_, [&] {
+      glBindVertexArray(emptyVao_.id());
+      light();
+    });
   }
   glBindVertexArray(0);
   glFinish();
@@ -134,7 +148,6 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
     stats->cutMs = lightcuts_ ? lightcuts_->cutMs() : 0.0;
     stats->cutsMade = lightcuts_ ? lightcuts_->cutsMade() : 0;
     stats->cutsKept = lightcuts_ ? lightcuts_->cutsKept() : 0;
-    if (lightcuts_ && settings.readCutStats) stats->cuts = lightcuts_->cutStats();
   }
   return image;
 }

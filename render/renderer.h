@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "render/blend_pass.h"
 #include "render/gbuffer.h"
 #include "render/geometry_pass.h"
 #include "render/gpu_scene.h"
@@ -80,6 +81,7 @@ class Renderer {
   GpuScene gpu_;
   GBuffer gbuffer_;
   GeometryPass geometry_;
+  std::unique_ptr<BlendPass> blend_;  // made on the first frame with blended draws
   ReferenceMethod reference_;
   std::unique_ptr<LightcutsMethod> lightcuts_;
   double bakeMs_ = 0.0;

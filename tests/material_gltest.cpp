@@ -167,6 +167,42 @@ TEST(Material, SecondUvSetWithTextureTransformMatchesTheOracle) {
   expectMatchesOracle(scene, r, "material_second_uv");
 }
 
+// Blended primitives are lit as opaque ones are, then composited over what lies behind them,
+// farthest first: a half-transparent plane over the floor, and a quarter-transparent box
+// over both (alphas exact in float, so coverage compares exactly).
+TEST(Material, BlendedPrimitivesAreLitAndCompositedBackToFront) {
+  context();
+  BuilderMaterial glass;
+  glass.baseColor = {0.3f, 0.6f, 0.9f, 0.5f};
+  glass.roughness = 0.6f;
+  glass.alphaMode = "BLEND";
+  GltfBuilder b;
+  b.addPlane({0, 0, 0}, {1.4f, 1.4f}, b.addMaterial(glass));
+  BuilderMaterial tinted;
+  tinted.baseColor = {0.9f, 0.4f, 0.2f, 0.25f};
+  tinted.alphaMode = "BLEND";
+  b.addBox({0.3f, 0.35f, 0.2f}, {0.5f, 0.5f, 0.5f}, b.addMaterial(tinted));
+  BuilderMaterial floor;
+  floor.baseColor = {0.2f, 0.5f, 0.3f, 1.0f};
+  b.addPlane({0, -0.4f, 0}, {6, 6}, b.addMaterial(floor));
+  Light point;
+  point.position = {0.4f, 1.2f, 0.6f};
+  point.intensity = 2.0f;
+  b.addLight(point);
+  b.addPerspectiveCamera({0.3f, 2.0f, 1.6f}, {0, 0, 0}, 0.9f);
+  const std::string path = (testFolder() / "blend.gltf").string();
+  b.write(path);
+  const Scene scene = loadGltf(path);
+  for (const Method method : {Method::Reference, Method::Lightcuts}) {
+    RenderRequest r = request();
+    r.method = method;
+    r.lightcuts.mode = ErrorMode::Total;
+    r.lightcuts.error = 1e-4f;
+    const RenderOutcome out = expectMatchesOracle(scene, r, "material_blend");
+    EXPECT_EQ(out.frame.lightingPasses, 3);  // the opaque frame and two layers
+  }
+}
+
 // White furnace: ambient A and no light give each opaque material A × (albedo + specular),
 // metals included.
 TEST(Material, AmbientAloneGivesEachMaterialItsReflectance) {

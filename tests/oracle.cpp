@@ -81,7 +81,9 @@ glm::dvec4 sampleBilinear(const Texture& tex, glm::dvec2 uv) {
                   glm::mix(texel(ix, iy + 1), texel(ix + 1, iy + 1), ax), ay);
 }
 
-std::vector<Triangle> worldTriangles(const Scene& scene) {
+// The scene's triangles in world space; `centres` gets each surface's bounds centre (the
+// order blended surfaces are composited in, as render/blend_pass.h does).
+std::vector<Triangle> worldTriangles(const Scene& scene, std::vector<glm::dvec3>& centres) {
   std::vector<Triangle> tris;
   int surface = 0;
   for (const MeshInstance& inst : scene.instances) {
@@ -111,6 +113,10 @@ std::vector<Triangle> worldTriangles(const Scene& scene) {
         for (int set = 0; set < 2; ++set) t.hasUv[set] = !uvs[set]->empty();
         tris.push_back(t);
       }
+      Bounds b;
+      for (const glm::vec3& v : prim.positions) b.add(v);
+      const glm::vec4 centre = inst.world * glm::vec4(0.5f * (b.min + b.max), 1.0f);
+      centres.push_back(glm::dvec3(glm::vec3(centre)));
       ++surface;
     }
   }
@@ -176,14 +182,80 @@ bool OracleImage::interior(int x, int y) const {
   return true;
 }
 
+namespace {
+
+// What one pixel's ray meets: the nearest hit among the triangles that `accept` takes that a
+// MASK material's cutoff does not discard, its material and its values there.
+struct Seen {
+  Hit hit;
+  SurfacePoint point;
+  const Material* material = nullptr;
+};
+
+template <typename Accept>
+Seen nearest(const Scene& scene, const std::vector<Triangle>& tris, glm::dvec3 origin,
+             glm::dvec3 dir, const Accept& accept) {
+  static const Material fallback = defaultMaterial();
+  Seen seen;
+  for (double after = 0.0;;) {
+    seen.hit = Hit{};
+    for (const Triangle& t : tris) {
+      if (!accept(t)) continue;
+      const bool doubleSided = t.material >= 0 && scene.materials[t.material].doubleSided;
+      intersect(t, origin, dir, doubleSided, after, seen.hit);
+    }
+    if (!seen.hit.tri) return seen;
+    seen.material =
+        seen.hit.tri->material >= 0 ? &scene.materials[seen.hit.tri->material] : &fallback;
+    seen.point = surfaceAt(scene, *seen.material, seen.hit);
+    const Material& m = *seen.material;
+    if (m.alphaMode != AlphaMode::Mask || seen.point.base.a >= m.alphaCutoff) return seen;
+    after = seen.hit.t;
+  }
+}
+
+// The radiance leaving what was seen towards the eye.
+glm::dvec3 shade(const Seen& s, glm::dvec3 p, glm::dvec3 v, const std::vector<Light>& lights,
+                 glm::dvec3 ambient) {
+  const SurfacePoint& sp = s.point;
+  if (s.material->unlit) return glm::dvec3(sp.base);
+  const shading::PhongMaterial phong =
+      shading::phongFromMetallicRoughness(glm::dvec3(sp.base), sp.metallic, sp.roughness);
+  glm::dvec3 radiance = shading::ambientRadiance(phong, ambient, sp.occlusion) + sp.emissive;
+  for (const Light& light : lights) {
+    glm::dvec3 l;
+    const glm::dvec3 e = shading::irradiance(light, p, sp.normal, l);
+    radiance += shading::brdf(phong, sp.normal, l, v) * e;
+  }
+  return radiance;
+}
+
+bool blended(const Scene& scene, const Triangle& t) {
+  return t.material >= 0 && scene.materials[t.material].alphaMode == AlphaMode::Blend;
+}
+
+}  // namespace
+
 OracleImage renderOracle(const Scene& scene, const Camera& camera, const std::vector<Light>& lights,
                          int width, int height, glm::dvec3 ambient) {
   const View view = makeView(camera, width, height);
   const glm::dmat4 inverseViewProjection =
       glm::inverse(glm::dmat4(view.projection) * glm::dmat4(view.view));
   const glm::dvec3 eye(view.eye), forward = glm::normalize(glm::dvec3(view.forward));
-  const std::vector<Triangle> tris = worldTriangles(scene);
-  const Material fallback = defaultMaterial();
+  std::vector<glm::dvec3> centres;
+  const std::vector<Triangle> tris = worldTriangles(scene, centres);
+  // Blended surfaces, farthest first by their centres.
+  std::vector<int> blendOrder;
+  for (const Triangle& t : tris) {
+    if (blended(scene, t) && (blendOrder.empty() || blendOrder.back() != t.surface))
+      blendOrder.push_back(t.surface);
+  }
+  auto depth = [&](int s) {
+    const glm::dvec3 c = centres[std::size_t(s)];
+    return view.orthographic ? glm::dot(c - eye, forward) : glm::length(c - eye);
+  };
+  std::stable_sort(blendOrder.begin(), blendOrder.end(),
+                   [&](int a, int b) { return depth(a) > depth(b); });
 
   OracleImage out;
   out.image.width = width;
@@ -207,39 +279,32 @@ OracleImage renderOracle(const Scene& scene, const Camera& camera, const std::ve
         origin = eye;
         dir = glm::normalize(unproject(0.0) - eye);
       }
-      // The nearest hit that a MASK material's cutoff does not discard.
-      Hit hit;
-      SurfacePoint sp;
-      const Material* m = nullptr;
-      for (double after = 0.0;;) {
-        hit = Hit{};
-        for (const Triangle& t : tris) {
-          const bool doubleSided = t.material >= 0 && scene.materials[t.material].doubleSided;
-          intersect(t, origin, dir, doubleSided, after, hit);
-        }
-        if (!hit.tri) break;
-        m = hit.tri->material >= 0 ? &scene.materials[hit.tri->material] : &fallback;
-        sp = surfaceAt(scene, *m, hit);
-        if (m->alphaMode != AlphaMode::Mask || sp.base.a >= m->alphaCutoff) break;
-        after = hit.t;
+      auto viewOf = [&](glm::dvec3 p) {
+        return view.orthographic ? -forward : glm::normalize(eye - p);
+      };
+      const Seen opaque =
+          nearest(scene, tris, origin, dir, [&](const Triangle& t) { return !blended(scene, t); });
+      glm::dvec4 c(0.0);  // premultiplied radiance and coverage
+      int id = -1;
+      if (opaque.hit.tri) {
+        const glm::dvec3 p = origin + opaque.hit.t * dir;
+        c = glm::dvec4(shade(opaque, p, viewOf(p), lights, ambient), 1.0);
+        id = opaque.hit.tri->surface;
       }
-      if (!hit.tri) continue;
-      const glm::dvec3 p = origin + hit.t * dir;
-      glm::dvec3 radiance = glm::dvec3(sp.base);
-      if (!m->unlit) {
-        const shading::PhongMaterial phong =
-            shading::phongFromMetallicRoughness(glm::dvec3(sp.base), sp.metallic, sp.roughness);
-        const glm::dvec3 v = view.orthographic ? -forward : glm::normalize(eye - p);
-        radiance = shading::ambientRadiance(phong, ambient, sp.occlusion) + sp.emissive;
-        for (const Light& light : lights) {
-          glm::dvec3 l;
-          const glm::dvec3 e = shading::irradiance(light, p, sp.normal, l);
-          radiance += shading::brdf(phong, sp.normal, l, v) * e;
-        }
+      // Each blended surface in front of it, farthest first: its nearest hit, composited over.
+      for (int s : blendOrder) {
+        const Seen layer =
+            nearest(scene, tris, origin, dir, [&](const Triangle& t) { return t.surface == s; });
+        if (!layer.hit.tri || (opaque.hit.tri && layer.hit.t >= opaque.hit.t)) continue;
+        const glm::dvec3 p = origin + layer.hit.t * dir;
+        const double a = std::clamp(layer.point.base.a, 0.0, 1.0);
+        c = glm::dvec4(shade(layer, p, viewOf(p), lights, ambient) * a, a) + c * (1.0 - a);
+        id = id * 31 + s + 1;
       }
+      if (id == -1) continue;
       float* px = out.image.pixel(x, y);
-      px[0] = float(radiance.r), px[1] = float(radiance.g), px[2] = float(radiance.b), px[3] = 1.0f;
-      out.surface[std::size_t(y) * width + x] = hit.tri->surface;
+      for (int ch = 0; ch < 4; ++ch) px[ch] = float(c[ch]);
+      out.surface[std::size_t(y) * width + x] = id;
     }
   }
   return out;
