@@ -51,7 +51,9 @@ std::string section(std::uint32_t which, const BakedScene& b) {
       putFloats(w, m.emissive);
       w.put(m.normalScale), w.put(m.occlusionStrength), w.put(m.alphaCutoff);
       w.put(std::uint8_t(m.alphaMode)), w.put(std::uint8_t(m.doubleSided)),
-          w.put(std::uint8_t(m.unlit));
+          w.put(std::uint8_t(m.unlit)), w.put(std::uint8_t(m.specularGlossiness));
+      putFloats(w, m.specularFactor);
+      w.put(m.glossiness);
       for (int k = 0; k < Material::kTextureSlots; ++k) {
         const TextureRef& t = m.slot(k);
         w.put(std::int32_t(t.texture)), w.put(std::uint8_t(t.texCoord));
@@ -161,6 +163,9 @@ void readMaterials(Reader& r, Scene& s, std::size_t textures) {
     m.alphaMode = AlphaMode(alphaMode);
     m.doubleSided = r.get<std::uint8_t>() != 0;
     m.unlit = r.get<std::uint8_t>() != 0;
+    m.specularGlossiness = r.get<std::uint8_t>() != 0;
+    m.specularFactor = getFinite<glm::vec3>(r, "a specular factor");
+    m.glossiness = getFinite<float>(r, "a glossiness");
     for (int k = 0; k < Material::kTextureSlots; ++k) {
       TextureRef& t = m.slot(k);
       t.texture = r.get<std::int32_t>();

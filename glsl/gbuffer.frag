@@ -31,6 +31,9 @@ uniform float uNormalScale;
 uniform float uOcclusionStrength;
 uniform float uAlphaCutoff;  // < 0: no cutoff (alpha modes other than MASK)
 uniform bool uUnlit;
+uniform bool uSpecularGlossiness;  // KHR_materials_pbrSpecularGlossiness (scene/scene.h)
+uniform vec3 uSpecularFactor;
+uniform float uGlossiness;
 uniform bool uDoubleSided;
 uniform bool uMirrored;  // negative determinant: the winding, and so gl_FrontFacing, flips
 uniform vec3 uAmbient;
@@ -76,20 +79,30 @@ void main() {
     gRadiance = vec4(base.rgb, 1.0);
     return;
   }
-  float metallic = uMetallic;
-  float roughness = uRoughness;
-  if (uMetalRoughSlot.bound) {
-    vec4 mr = sampleSlot(uMetalRoughSlot, uMetalRoughTexture);
-    metallic *= mr.b;
-    roughness *= mr.g;
+  float roughness;
+  vec3 albedo, specular;
+  if (uSpecularGlossiness) {
+    vec4 sg = vec4(uSpecularFactor, uGlossiness);
+    if (uMetalRoughSlot.bound) sg *= sampleSlot(uMetalRoughSlot, uMetalRoughTexture);
+    specular = clamp(sg.rgb, 0.0, 1.0);
+    roughness = 1.0 - clamp(sg.a, 0.0, 1.0);
+    albedo = base.rgb * (1.0 - max(specular.r, max(specular.g, specular.b)));
+  } else {
+    float metallic = uMetallic;
+    roughness = uRoughness;
+    if (uMetalRoughSlot.bound) {
+      vec4 mr = sampleSlot(uMetalRoughSlot, uMetalRoughTexture);
+      metallic *= mr.b;
+      roughness *= mr.g;
+    }
+    metallic = clamp(metallic, 0.0, 1.0);
+    roughness = clamp(roughness, 0.0, 1.0);
+    albedo = base.rgb * (1.0 - metallic);
+    specular = mix(vec3(kDielectricF0), base.rgb, metallic) *
+               (metallic + (1.0 - metallic) * (1.0 - roughness));
   }
-  metallic = clamp(metallic, 0.0, 1.0);
-  roughness = clamp(roughness, 0.0, 1.0);
   float alpha = roughness * roughness;
   float alpha2 = max(alpha * alpha, 1e-12);
-  vec3 albedo = base.rgb * (1.0 - metallic);
-  vec3 specular = mix(vec3(kDielectricF0), base.rgb, metallic) *
-                  (metallic + (1.0 - metallic) * (1.0 - roughness));
   float exponent = clamp(0.5 / alpha2 - 0.5, 1.0, kMaxPhongExponent);
   float occlusion = 1.0;
   if (uOcclusionSlot.bound) {

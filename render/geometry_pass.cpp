@@ -42,6 +42,9 @@ GeometryPass::GeometryPass()
   doubleSided_ = p.uniform("uDoubleSided");
   mirrored_ = p.uniform("uMirrored");
   pointSize_ = p.uniform("uPointSize");
+  specularGlossiness_ = p.uniform("uSpecularGlossiness");
+  specularFactor_ = p.uniform("uSpecularFactor");
+  glossiness_ = p.uniform("uGlossiness");
   p.use();
   for (int k = 0; k < Material::kTextureSlots; ++k) {
     const std::string slot = kSlotNames[k];
@@ -63,6 +66,9 @@ void GeometryPass::setMaterial(const Material& m, const GpuScene& gpu,
   // Points and lines without normals show their base colour, as glTF says.
   glUniform1i(unlit_, m.unlit || !d.hasNormals ? 1 : 0);
   glUniform1i(doubleSided_, m.doubleSided ? 1 : 0);
+  glUniform1i(specularGlossiness_, m.specularGlossiness ? 1 : 0);
+  glUniform3fv(specularFactor_, 1, glm::value_ptr(m.specularFactor));
+  glUniform1f(glossiness_, m.glossiness);
   for (int k = 0; k < Material::kTextureSlots; ++k) {
     const TextureRef& t = m.slot(k);
     const bool hasUvs = t.texCoord == 1 ? d.hasTexcoords1 : d.hasTexcoords;

@@ -34,7 +34,7 @@ class GeometryPass {
   const gl::Program& program_;  // kept by the context
   GLint viewProjection_, ambient_, model_, normalMatrix_, baseColorFactor_, metallic_, roughness_,
       emissive_, normalScale_, occlusionStrength_, alphaCutoff_, unlit_, doubleSided_, mirrored_,
-      pointSize_;
+      pointSize_, specularGlossiness_, specularFactor_, glossiness_;
   std::array<SlotUniforms, Material::kTextureSlots> slots_;
 };
 

@@ -110,8 +110,10 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<Light>& lights) {
         const Material& m = scene.materials[g.material];
         // A metallic-roughness texture can lower the roughness below its factor's.
         const bool mapped = m.metallicRoughnessTexture.texture >= 0;
-        hasSpecular_ = hasSpecular_ ||
-                       (!m.unlit && (mapped || shading::hasSpecularTerm(m.metallic, m.roughness)));
+        const bool specular = m.specularGlossiness
+                                  ? m.specularFactor != glm::vec3(0.0f)
+                                  : mapped || shading::hasSpecularTerm(m.metallic, m.roughness);
+        hasSpecular_ = hasSpecular_ || (!m.unlit && specular);
       }
       const glm::mat3 linear(inst.world);
       const bool blended =

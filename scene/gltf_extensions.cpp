@@ -13,10 +13,10 @@ namespace {
 
 // Extensions whose absence would change what we render; we implement these fully.
 const std::set<std::string> kSupportedRequired = {
-    "KHR_lights_punctual",    "KHR_mesh_quantization",
-    "KHR_texture_transform",  "KHR_materials_emissive_strength",
-    "KHR_materials_unlit",    "KHR_draco_mesh_compression",
-    "EXT_meshopt_compression"};
+    "KHR_lights_punctual",     "KHR_mesh_quantization",
+    "KHR_texture_transform",   "KHR_materials_emissive_strength",
+    "KHR_materials_unlit",     "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression", "KHR_materials_pbrSpecularGlossiness"};
 // Required extensions refused with a reason of their own.
 const std::map<std::string, std::string> kRefusedRequired = {
     {"KHR_texture_basisu", "Basis Universal (KTX2) textures have no decoder here"}};

@@ -39,6 +39,31 @@ glm::mat3 uvTransform(const tinygltf::Value& t) {
   return translation * rotation * scaling;
 }
 
+// A textureInfo written inside an extension's JSON (tinygltf parses only the core ones).
+tinygltf::TextureInfo textureInfoOf(const tinygltf::Value& v) {
+  tinygltf::TextureInfo info;
+  if (!v.IsObject()) return info;
+  info.index = int(number(v, "index", -1.0));
+  info.texCoord = int(number(v, "texCoord", 0.0));
+  if (v.Has("extensions") && v.Get("extensions").IsObject()) {
+    const tinygltf::Value& ext = v.Get("extensions");
+    for (const std::string& key : ext.Keys()) info.extensions[key] = ext.Get(key);
+  }
+  return info;
+}
+
+glm::vec4 vec4Of(const tinygltf::Value& v, const char* key, glm::vec4 fallback) {
+  if (!v.IsObject() || !v.Has(key)) return fallback;
+  const tinygltf::Value& x = v.Get(key);
+  if (!x.IsArray() || (x.ArrayLen() != 3 && x.ArrayLen() != 4)) return fallback;
+  glm::vec4 out = fallback;
+  for (int i = 0; i < int(x.ArrayLen()); ++i) {
+    if (!x.Get(i).IsNumber()) return fallback;
+    out[i] = float(x.Get(i).GetNumberAsDouble());
+  }
+  return out;
+}
+
 bool finite(glm::mat3 m) {
   for (int c = 0; c < 3; ++c) {
     for (int r = 0; r < 3; ++r) {
@@ -117,9 +142,36 @@ int MaterialConverter::material(int index) {
     const tinygltf::TextureInfo& e = src.emissiveTexture;
     m.emissiveTexture = textureRef(index, "emissive", e, e.index, e.texCoord, true);
   }
+  const auto sg = src.extensions.find("KHR_materials_pbrSpecularGlossiness");
+  if (sg != src.extensions.end() && !m.unlit) specularGlossiness(index, sg->second, m);
   materials_[index] = int(scene_.materials.size());
   scene_.materials.push_back(m);
   return materials_[index];
+}
+
+void MaterialConverter::specularGlossiness(int index, const tinygltf::Value& ext, Material& m) {
+  m.specularGlossiness = true;
+  m.baseColorFactor = vec4Of(ext, "diffuseFactor", glm::vec4(1.0f));
+  m.specularFactor = glm::vec3(vec4Of(ext, "specularFactor", glm::vec4(1.0f)));
+  m.glossiness = float(number(ext, "glossinessFactor", 1.0));
+  const float factors[] = {m.baseColorFactor.r, m.baseColorFactor.g, m.baseColorFactor.b,
+                           m.baseColorFactor.a, m.specularFactor.r,  m.specularFactor.g,
+                           m.specularFactor.b,  m.glossiness};
+  if (!std::all_of(std::begin(factors), std::end(factors),
+                   [](float f) { return std::isfinite(f); }))
+    throw SceneError("material " + str(index) +
+                     ": KHR_materials_pbrSpecularGlossiness factors "
+                     "must be finite");
+  const tinygltf::TextureInfo diffuse = ext.Has("diffuseTexture")
+                                            ? textureInfoOf(ext.Get("diffuseTexture"))
+                                            : tinygltf::TextureInfo{};
+  m.baseColorTexture = textureRef(index, "diffuse", diffuse, diffuse.index, diffuse.texCoord, true);
+  const tinygltf::TextureInfo sgInfo = ext.Has("specularGlossinessTexture")
+                                           ? textureInfoOf(ext.Get("specularGlossinessTexture"))
+                                           : tinygltf::TextureInfo{};
+  // sRGB specular colour; the sampler decodes RGB only, so A (glossiness) stays linear.
+  m.metallicRoughnessTexture =
+      textureRef(index, "specular-glossiness", sgInfo, sgInfo.index, sgInfo.texCoord, true);
 }
 
 TextureRef MaterialConverter::textureRef(int materialIndex, const char* what,

@@ -2,7 +2,7 @@
 // Converts glTF materials and their textures into scene/ types, each once, on first use:
 // the core metallic-roughness material with all five textures, alpha modes, and the
 // extensions that change a picture (KHR_texture_transform, KHR_materials_emissive_strength,
-// KHR_materials_unlit). Internal to scene/.
+// KHR_materials_unlit, KHR_materials_pbrSpecularGlossiness). Internal to scene/.
 #include <map>
 #include <string>
 #include <utility>
@@ -12,6 +12,7 @@
 
 namespace tinygltf {
 class Model;
+class Value;
 struct TextureInfo;
 }  // namespace tinygltf
 
@@ -29,6 +30,8 @@ class MaterialConverter {
   TextureRef textureRef(int materialIndex, const char* what, const tinygltf::TextureInfo& info,
                         int index, int texCoord, bool srgb);
   int texture(int index, bool srgb);
+  // KHR_materials_pbrSpecularGlossiness `ext` of material `index` into `m`.
+  void specularGlossiness(int index, const tinygltf::Value& ext, Material& m);
 
   const tinygltf::Model& model_;
   Scene& scene_;

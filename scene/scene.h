@@ -67,6 +67,12 @@ struct Material {
   float alphaCutoff = 0.5f;  // AlphaMode::Mask
   bool doubleSided = false;
   bool unlit = false;  // KHR_materials_unlit: base colour out, no lighting
+  // KHR_materials_pbrSpecularGlossiness: baseColorFactor and baseColorTexture hold the
+  // diffuse factor and texture, metallicRoughnessTexture the specular-glossiness texture
+  // (sRGB specular colour, linear glossiness in A); metallic and roughness are unused.
+  bool specularGlossiness = false;
+  glm::vec3 specularFactor{1.0f};
+  float glossiness = 1.0f;
 
   // The material's textures, in the order the G-buffer pass binds them.
   static constexpr int kTextureSlots = 5;

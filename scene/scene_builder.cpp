@@ -79,6 +79,34 @@ struct GltfBuilder::Impl {
     return int(model.textures.size()) - 1;
   }
 
+  // KHR_materials_pbrSpecularGlossiness of `m`, its textures added.
+  tinygltf::Value specularGlossiness(const BuilderMaterial& m) {
+    auto numbers = [](std::initializer_list<float> v) {
+      tinygltf::Value::Array a;
+      for (float x : v) a.emplace_back(double(x));
+      return tinygltf::Value(a);
+    };
+    auto texture = [&](const BuilderTexture& t) {
+      tinygltf::Value::Object o;
+      o["index"] = tinygltf::Value(addTexture(t));
+      return tinygltf::Value(o);
+    };
+    tinygltf::Value::Object x;
+    const glm::vec4 d = m.baseColor;
+    x["diffuseFactor"] = numbers({d.r, d.g, d.b, d.a});
+    x["specularFactor"] = numbers({m.specularFactor.r, m.specularFactor.g, m.specularFactor.b});
+    x["glossinessFactor"] = tinygltf::Value(double(m.glossiness));
+    if (!m.textureRgba.empty()) {
+      BuilderTexture base;
+      base.width = m.textureWidth, base.height = m.textureHeight, base.rgba = m.textureRgba;
+      x["diffuseTexture"] = texture(base);
+    }
+    if (!m.specularGlossinessTexture.rgba.empty())
+      x["specularGlossinessTexture"] = texture(m.specularGlossinessTexture);
+    use("KHR_materials_pbrSpecularGlossiness");
+    return tinygltf::Value(x);
+  }
+
   // Lists `extension` in extensionsUsed and extensionsRequired, once.
   void use(const std::string& extension) {
     auto& used = model.extensionsUsed;
@@ -198,6 +226,8 @@ int GltfBuilder::addMaterial(const BuilderMaterial& m) {
     mat.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object{});
     impl_->use("KHR_materials_unlit");
   }
+  if (m.specularGlossiness)
+    mat.extensions["KHR_materials_pbrSpecularGlossiness"] = impl_->specularGlossiness(m);
   impl_->model.materials.push_back(mat);
   return int(impl_->model.materials.size()) - 1;
 }

@@ -40,6 +40,12 @@ struct BuilderMaterial {
   float alphaCutoff = 0.5f;
   float emissiveStrength = 1.0f;  // written as KHR_materials_emissive_strength when not 1
   bool unlit = false;             // KHR_materials_unlit
+  // KHR_materials_pbrSpecularGlossiness when set: baseColor and the base-colour texture are
+  // written as its diffuse factor and texture, `specularGlossinessTexture` beside them.
+  bool specularGlossiness = false;
+  glm::vec3 specularFactor{1.0f};
+  float glossiness = 1.0f;
+  BuilderTexture specularGlossinessTexture;
 };
 
 class GltfBuilder {

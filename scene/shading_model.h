@@ -82,6 +82,21 @@ inline PhongMaterial phongFromMetallicRoughness(glm::dvec3 baseColour, double me
   return m;
 }
 
+// Maps KHR_materials_pbrSpecularGlossiness to the same parameters: albedo = diffuse ·
+// (1 − max(specular)) (the extension's own split), ks = specular, and the exponent of
+// roughness 1 − glossiness as above.
+inline PhongMaterial phongFromSpecularGlossiness(glm::dvec3 diffuse, glm::dvec3 specular,
+                                                 double glossiness) {
+  specular = glm::clamp(specular, 0.0, 1.0);
+  const double roughness = 1.0 - std::clamp(glossiness, 0.0, 1.0);
+  const double alpha2 = std::max(std::pow(roughness, 4.0), 1e-12);
+  PhongMaterial m;
+  m.albedo = diffuse * (1.0 - std::max({specular.r, specular.g, specular.b}));
+  m.specular = specular;
+  m.exponent = std::clamp(0.5 / alpha2 - 0.5, 1.0, kMaxPhongExponent);
+  return m;
+}
+
 // Whether phongFromMetallicRoughness gives a non-zero specular colour (for any non-black
 // base colour): everything but a fully rough dielectric.
 inline bool hasSpecularTerm(double metallic, double roughness) {

@@ -97,6 +97,24 @@ TEST(Material, TexturedMetallicRoughnessMatchesTheOracle) {
   expectMatchesOracle(scene, request(), "material_mr");
 }
 
+TEST(Material, SpecularGlossinessMatchesTheOracle) {
+  context();
+  BuilderMaterial m;
+  m.specularGlossiness = true;
+  m.baseColor = {0.8f, 0.7f, 0.6f, 1.0f};
+  m.specularFactor = {0.9f, 0.8f, 0.7f};
+  m.glossiness = 0.9f;
+  setBaseTexture(m, checker({230, 180, 60, 255}, {90, 140, 210, 255}));
+  // sRGB specular colour, linear glossiness 0.5 or 0.2 in A (exponents stay small, as in
+  // the metallic-roughness test, and NEAREST for the same reason).
+  m.specularGlossinessTexture = checker({200, 200, 200, 128}, {60, 90, 40, 51});
+  m.specularGlossinessTexture.nearest = true;
+  const Scene scene = planeScene("sg", m);
+  ASSERT_TRUE(scene.materials[0].specularGlossiness);
+  EXPECT_TRUE(scene.textures[scene.materials[0].metallicRoughnessTexture.texture].srgb);
+  expectMatchesOracle(scene, request(), "material_sg");
+}
+
 TEST(Material, EmissiveTextureTimesFactorAndStrengthMatchesTheOracle) {
   context();
   BuilderMaterial m;

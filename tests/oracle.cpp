@@ -128,7 +128,8 @@ std::vector<Triangle> worldTriangles(const Scene& scene, std::vector<glm::dvec3>
 struct SurfacePoint {
   glm::dvec4 base;  // base colour and alpha
   glm::dvec3 normal;
-  double metallic, roughness, occlusion;
+  shading::PhongMaterial phong;
+  double occlusion;
   glm::dvec3 emissive;
 };
 
@@ -146,8 +147,13 @@ SurfacePoint surfaceAt(const Scene& scene, const Material& m, const Hit& hit) {
   s.base =
       glm::dvec4(m.baseColorFactor) * lerp(t.colour) * sample(m.baseColorTexture, glm::dvec4(1.0));
   const glm::dvec4 mr = sample(m.metallicRoughnessTexture, glm::dvec4(1.0));
-  s.metallic = m.metallic * mr.b;
-  s.roughness = m.roughness * mr.g;
+  if (m.specularGlossiness) {
+    const glm::dvec4 sg = glm::dvec4(glm::dvec3(m.specularFactor), m.glossiness) * mr;
+    s.phong = shading::phongFromSpecularGlossiness(glm::dvec3(s.base), glm::dvec3(sg), sg.a);
+  } else {
+    s.phong = shading::phongFromMetallicRoughness(glm::dvec3(s.base), m.metallic * mr.b,
+                                                  m.roughness * mr.g);
+  }
   s.occlusion = 1.0 + m.occlusionStrength * (sample(m.occlusionTexture, glm::dvec4(1.0)).r - 1.0);
   s.emissive = glm::dvec3(m.emissive) * glm::dvec3(sample(m.emissiveTexture, glm::dvec4(1.0)));
   glm::dvec3 n = glm::normalize(lerp(t.n));
@@ -219,8 +225,7 @@ glm::dvec3 shade(const Seen& s, glm::dvec3 p, glm::dvec3 v, const std::vector<Li
                  glm::dvec3 ambient) {
   const SurfacePoint& sp = s.point;
   if (s.material->unlit) return glm::dvec3(sp.base);
-  const shading::PhongMaterial phong =
-      shading::phongFromMetallicRoughness(glm::dvec3(sp.base), sp.metallic, sp.roughness);
+  const shading::PhongMaterial& phong = sp.phong;
   glm::dvec3 radiance = shading::ambientRadiance(phong, ambient, sp.occlusion) + sp.emissive;
   for (const Light& light : lights) {
     glm::dvec3 l;
