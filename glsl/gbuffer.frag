@@ -103,7 +103,7 @@ void main() {
   }
   float alpha = roughness * roughness;
   float alpha2 = max(alpha * alpha, 1e-12);
-  float exponent = clamp(0.5 / alpha2 - 0.5, 1.0, kMaxPhongExponent);
+  float exponent = clamp(0.125 / alpha2 - 0.5, 1.0, kMaxPhongExponent);
   float occlusion = 1.0;
   if (uOcclusionSlot.bound) {
     occlusion = 1.0 + uOcclusionStrength * (sampleSlot(uOcclusionSlot, uOcclusionTexture).r - 1.0);

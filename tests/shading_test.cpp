@@ -18,7 +18,7 @@ TEST(Shading, FullyRoughDielectricIsPureLambert) {
   const auto metal = shading::phongFromMetallicRoughness(glm::dvec3(0.9, 0.6, 0.3), 1.0, 0.5);
   EXPECT_EQ(metal.albedo, glm::dvec3(0.0));
   EXPECT_NEAR(metal.specular.r, 0.9, 1e-12);
-  EXPECT_NEAR(metal.exponent, 0.5 / std::pow(0.25, 2) - 0.5, 1e-9);  // 1/(2α²) − 1/2
+  EXPECT_NEAR(metal.exponent, 0.125 / std::pow(0.25, 2) - 0.5, 1e-9);  // 1/(8α²) − 1/2
   EXPECT_FALSE(shading::hasSpecularTerm(0.0, 1.0));
   EXPECT_TRUE(shading::hasSpecularTerm(1.0, 1.0));
   EXPECT_TRUE(shading::hasSpecularTerm(0.0, 0.9));
