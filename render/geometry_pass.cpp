@@ -23,8 +23,9 @@ constexpr float kPointSize = 1.0f;
 
 }  // namespace
 
-GeometryPass::GeometryPass()
-    : program_(gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {},
+GeometryPass::GeometryPass(Aov aov)
+    : aov_(aov),
+      program_(gl::cachedProgram("gbuffer.vert", "gbuffer.frag", aovDefines(aov),
                                  {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"})) {
   const gl::Program& p = program_;
   viewProjection_ = p.uniform("uViewProjection");
@@ -39,6 +40,7 @@ GeometryPass::GeometryPass()
   occlusionStrength_ = p.uniform("uOcclusionStrength");
   alphaCutoff_ = p.uniform("uAlphaCutoff");
   unlit_ = p.uniform("uUnlit");
+  opaque_ = p.uniform("uOpaque");  // -1 (ignored) in the lit program, which reads no alpha
   doubleSided_ = p.uniform("uDoubleSided");
   mirrored_ = p.uniform("uMirrored");
   pointSize_ = p.uniform("uPointSize");
@@ -62,6 +64,7 @@ void GeometryPass::setMaterial(const Material& m, const GpuScene& gpu,
   glUniform1f(alphaCutoff_, m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f);
   // Points and lines without normals show their base colour, as glTF says.
   glUniform1i(unlit_, m.unlit || !d.hasNormals ? 1 : 0);
+  glUniform1i(opaque_, m.alphaMode == AlphaMode::Opaque ? 1 : 0);
   glUniform1i(doubleSided_, m.doubleSided ? 1 : 0);
   for (int k = 0; k < Material::kTextureSlots; ++k) {
     const TextureRef& t = m.slot(k);

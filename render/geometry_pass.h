@@ -1,10 +1,12 @@
 #pragma once
 // The deferred path's first pass: every opaque and masked primitive into the G-buffer, with
-// its material's factors and textures (glsl/gbuffer.frag).
+// its material's factors and textures (glsl/gbuffer.frag); or, for an AOV, one material
+// channel of theirs into the radiance target.
 #include <array>
 #include <glm/glm.hpp>
 
 #include "gl/objects.h"
+#include "render/aov.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
 #include "scene/camera.h"
@@ -14,8 +16,10 @@ namespace manylight {
 
 class GeometryPass {
  public:
-  // Compiles (or takes the context's cached) program; needs a current context.
-  GeometryPass();
+  // Compiles (or takes the context's cached) program, the lit one or that of `aov`; needs a
+  // current context.
+  explicit GeometryPass(Aov aov = Aov::None);
+  Aov aov() const { return aov_; }
 
   // Clears `gbuffer` and draws `scene` (uploaded as `gpu`) into it, seen through `view`,
   // the ambient radiance `ambient` added to every lit surface.
@@ -28,10 +32,11 @@ class GeometryPass {
   };
   void setMaterial(const Material& m, const GpuScene& gpu, const GpuScene::Draw& d) const;
 
+  Aov aov_;
   const gl::Program& program_;  // kept by the context
   GLint viewProjection_, ambient_, model_, normalMatrix_, baseColorFactor_, metallic_, roughness_,
-      emissive_, normalScale_, occlusionStrength_, alphaCutoff_, unlit_, doubleSided_, mirrored_,
-      pointSize_;
+      emissive_, normalScale_, occlusionStrength_, alphaCutoff_, unlit_, opaque_, doubleSided_,
+      mirrored_, pointSize_;
   std::array<SlotUniforms, Material::kTextureSlots> slots_;
 };
 
