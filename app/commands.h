@@ -85,6 +85,7 @@ struct RenderArgs {
   std::vector<std::string> scenes;
   std::string output, outDir, format = "png", shard, size = "640x480", backend = "auto";
   std::string ambient = "0,0,0", statsPath;
+  std::string aov;  // empty: the lit image
   MethodArgs lighting{"reference"};
   int camera = -1;
   float exposure = 0.0f;

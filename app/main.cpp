@@ -45,6 +45,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   render->add_option("--exposure", r.exposure, "Exposure in EV: the image is scaled by 2^EV")
       ->capture_default_str();
+  render
+      ->add_option("--aov", r.aov,
+                   "Write this material channel instead of the lit image, encoded as the glTF "
+                   "Sample Viewer's debug output of that name (see the README)")
+      ->check(CLI::IsMember(aovNames()));
   addSceneOptions(render, r.input);
   render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
   render->add_flag("-v,--verbose", r.verbose,

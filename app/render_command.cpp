@@ -62,7 +62,8 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     std::cerr << "manylight: " << scenePath << ": no camera; framing the bounds\n";
   if (out.defaultRig)
     std::cerr << "manylight: " << scenePath << ": no lights; using the default three-light rig\n";
-  writeImage(out.image, output, a.exposure);
+  // Exposure scales light; an AOV holds material values, written as they are.
+  writeImage(out.image, output, request.aov == Aov::None ? a.exposure : 0.0f);
   nlohmann::json stats = {
       {"scene", scenePath},
       {"output", output},
@@ -83,7 +84,9 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
       {"boundary_edges", scene.topology.boundaryEdges},
       {"non_manifold_edges", scene.topology.nonManifoldEdges},
   };
-  if (request.method != Method::Reference) {
+  if (request.aov != Aov::None) {
+    stats["aov"] = aovChannel(request.aov).name;
+  } else if (request.method != Method::Reference) {
     const CutStats& c = out.frame.cuts;
     stats["bake_ms"] = out.bakeMs;
     stats["cut_ms"] = out.frame.cutMs;
@@ -136,6 +139,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.camera = a.camera;
   request.ambient = parseRgb(a.ambient);
   request.method = a.lighting.parsed();
+  request.aov = parseAov(a.aov);
   request.lightcuts = a.lighting.lightcuts();
   request.lightcuts.trees = a.input.trees();
   const gl::Backend backend = gl::parseBackend(a.backend);
@@ -160,7 +164,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   // A scene that fails does so within a millisecond or two (a missing file, bad JSON) and
   // then has no use for the compiled code; a scene that reads takes far longer than 10 ms.
   if (next.wait_for(std::chrono::milliseconds(10)) != std::future_status::ready) {
-    warmUpGeometryPass();
+    warmUpGeometryPass(request.aov);
   }
   if (!batch) {
     nlohmann::json stats =

@@ -23,8 +23,9 @@ constexpr float kPointSize = 1.0f;
 
 }  // namespace
 
-GeometryPass::GeometryPass()
-    : program_(gl::cachedProgram("gbuffer.vert", "gbuffer.frag", {},
+GeometryPass::GeometryPass(Aov aov)
+    : aov_(aov),
+      program_(gl::cachedProgram("gbuffer.vert", "gbuffer.frag", aovDefines(aov),
                                  {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"})) {
   const gl::Program& p = program_;
   viewProjection_ = p.uniform("uViewProjection");
@@ -39,6 +40,7 @@ GeometryPass::GeometryPass()
   occlusionStrength_ = p.uniform("uOcclusionStrength");
   alphaCutoff_ = p.uniform("uAlphaCutoff");
   unlit_ = p.uniform("uUnlit");
+  opaque_ = p.uniform("uOpaque");  // -1 (ignored) in the lit program, which reads no alpha
   doubleSided_ = p.uniform("uDoubleSided");
   mirrored_ = p.uniform("uMirrored");
   pointSize_ = p.uniform("uPointSize");
@@ -65,6 +67,7 @@ void GeometryPass::setMaterial(const Material& m, const GpuScene& gpu,
   glUniform1f(alphaCutoff_, m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f);
   // Points and lines without normals show their base colour, as glTF says.
   glUniform1i(unlit_, m.unlit || !d.hasNormals ? 1 : 0);
+  glUniform1i(opaque_, m.alphaMode == AlphaMode::Opaque ? 1 : 0);
   glUniform1i(doubleSided_, m.doubleSided ? 1 : 0);
   glUniform1i(specularGlossiness_, m.specularGlossiness ? 1 : 0);
   glUniform3fv(specularFactor_, 1, glm::value_ptr(m.specularFactor));
@@ -105,7 +108,8 @@ void GeometryPass::draw(const Scene& scene, const GpuScene& gpu, const GBuffer& 
   const Material fallback = defaultMaterial();
   for (std::size_t i = 0; i < gpu.draws().size(); ++i) {
     const GpuScene::Draw& d = gpu.draws()[i];
-    if (only < 0 ? d.blended : int(i) != only) continue;
+    const bool skip = only == kOpaque ? d.blended : only == kAll ? false : int(i) != only;
+    if (skip) continue;
     const Material& m = d.material >= 0 ? scene.materials[d.material] : fallback;
     glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(d.model));
     glUniformMatrix3fv(normalMatrix_, 1, GL_FALSE, glm::value_ptr(d.normalMatrix));

@@ -30,14 +30,21 @@ void writeImage(const Image& image, const std::string& path, float exposure) {
   std::string reason;
   if (png) {
     RawImage<std::uint8_t> codes{image.width, image.height, 4, std::vector<std::uint8_t>(n * 4)};
+    const bool colour = image.values == ImageValues::Colour;
+    auto code = [](float v) {
+      return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    };
     for (std::size_t i = 0; i < n * 4; ++i) {
       // Alpha is coverage, not a colour: linear, not encoded. Images hold colour premultiplied
       // by it (as EXR does); PNG's is straight, so partly covered pixels are divided by it.
       const float alpha = image.rgba[i | 3];
       const double straight = alpha > 0.0f && alpha < 1.0f ? 1.0 / alpha : 1.0;
-      codes.pixels[i] =
-          (i % 4 == 3) ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
-                       : encodeSrgb8(image.rgba[i] * scale * straight);
+      if (i % 4 == 3) {
+        codes.pixels[i] = code(image.rgba[i]);
+      } else {
+        codes.pixels[i] = colour ? encodeSrgb8(image.rgba[i] * scale * straight)
+                                 : code(float(image.rgba[i] * scale));
+      }
     }
     ok = imageIo().writeSrgb8(tmp.c_str(), codes, &reason);
   } else {

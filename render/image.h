@@ -1,6 +1,6 @@
 #pragma once
-// Images the renderer produces, and their files: PNG (8-bit, exact sRGB encoding) and
-// EXR (linear float, unclamped), through OpenImageIO.
+// Images the renderer produces, and their files: PNG (8-bit; colours through the exact sRGB
+// curve, data as they are) and EXR (float, unclamped), through OpenImageIO.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,18 +17,26 @@ class ImageError : public Error {
   using Error::Error;
 };
 
+// What an image's RGB values are, which decides how a PNG stores them.
+enum class ImageValues {
+  Colour,  // linear colour (radiance, base colour): code = sRGB encoding of the value
+  Data,    // material data (metallic, roughness, normals): code = 255 · value
+};
+
 // Linear RGBA float pixels, row 0 at the top.
 struct Image {
   int width = 0;
   int height = 0;
   std::vector<float> rgba;
+  ImageValues values = ImageValues::Colour;
   float* pixel(int x, int y) { return &rgba[(std::size_t(y) * width + x) * 4]; }
   const float* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
 };
 
-// Writes `image` scaled by 2^exposure to `path`: .png as 8-bit sRGB RGBA, .exr as linear
-// float RGBA. Creates missing parent folders, writes a temporary file beside the target and
-// renames it, so a failure leaves no partial file. Throws ImageError.
+// Writes `image`, its RGB scaled by 2^exposure, to `path`: .png as 8-bit RGBA (RGB
+// sRGB-encoded for ImageValues::Colour, code = 255 · value for Data; alpha 255 · value), .exr
+// as float RGBA holding the values themselves. Creates missing parent folders, writes a temporary
+// file beside the target and renames it, so a failure leaves no partial file. Throws ImageError.
 void writeImage(const Image& image, const std::string& path, float exposure = 0.0f);
 
 // Throws ImageError unless `path` names a format writeImage writes (.png, .exr).

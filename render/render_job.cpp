@@ -20,9 +20,12 @@ PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
   if (defaultRig) rig = defaultLightRig(camera);
   const std::vector<Light>& lights = defaultRig ? rig : scene.lights;
   lightCount = lights.size();
-  renderer = std::make_unique<Renderer>(scene, lights, request.width, request.height,
-                                        request.method, request.lightcuts.trees,
+  // An AOV runs no lighting pass, so the reference method, which builds nothing, serves it.
+  const Method method = request.aov == Aov::None ? request.method : Method::Reference;
+  renderer = std::make_unique<Renderer>(scene, lights, request.width, request.height, method,
+                                        request.lightcuts.trees,
                                         defaultRig ? nullptr : request.prebuiltTrees);
+  settings.aov = request.aov;
   settings.ambient = request.ambient;
   settings.lightsPerPass = request.lightsPerPass;
   settings.lightcuts = request.lightcuts;

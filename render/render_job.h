@@ -19,6 +19,9 @@ struct RenderRequest {
   LightcutsSettings lightcuts;
   // Lightcuts trees packed before for the scene's own lights (a baked scene); null: build.
   const PackedTrees* prebuiltTrees = nullptr;
+  // Not None: the image is this material channel (render/aov.h), lit by nothing; no light
+  // trees are built for it.
+  Aov aov = Aov::None;
 };
 
 struct RenderOutcome {

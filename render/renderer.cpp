@@ -46,7 +46,7 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
   }
 }
 
-void warmUpGeometryPass() {
+void warmUpGeometryPass(Aov aov) {
   Scene scene;
   Primitive triangle;
   triangle.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
@@ -58,12 +58,20 @@ void warmUpGeometryPass() {
   Camera camera;
   camera.world = glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 3));
   const int size = 8;
-  Renderer(scene, {}, size, size, Method::Reference).render(makeView(camera, size, size), {});
+  FrameSettings settings;
+  settings.aov = aov;
+  Renderer(scene, {}, size, size, Method::Reference).render(makeView(camera, size, size), settings);
 }
 
 void Renderer::replaceLights(const std::vector<Light>& lights) {
   assert(!lightcuts_ && "the light trees are built once, from the lights given at construction");
   gpu_.replaceLights(lights);
+}
+
+const GeometryPass& Renderer::aovPass(Aov aov) {
+  if (!aovGeometry_ || aovGeometry_->aov() != aov)
+    aovGeometry_ = std::make_unique<GeometryPass>(aov);
+  return *aovGeometry_;
 }
 
 std::vector<bool> rowsLit(int height, int rowBandStride) {
@@ -96,33 +104,37 @@ int Renderer::lightReference(const View& view, const FrameSettings& settings) {
 Image Renderer::render(const View& view, const FrameSettings& settings, FrameStats* stats) {
   glFinish();
   const auto start = std::chrono::steady_clock::now();
-  geometry_.draw(scene_, gpu_, gbuffer_, view, settings.ambient);
-  glBindVertexArray(emptyVao_.id());
   int passes = 0;
-  auto light = [&] {
-    if (lightcuts_) {
-      lightcuts_->light(gpu_, gbuffer_, view, settings.lightcuts);
-      ++passes;
-    } else {
-      passes += lightReference(view, settings);
+  if (settings.aov != Aov::None) {
+    aovPass(settings.aov).draw(scene_, gpu_, gbuffer_, view, settings.ambient, GeometryPass::kAll);
+  } else {
+    geometry_.draw(scene_, gpu_, gbuffer_, view, settings.ambient);
+    glBindVertexArray(emptyVao_.id());
+    auto light = [&] {
+      if (lightcuts_) {
+        lightcuts_->light(gpu_, gbuffer_, view, settings.lightcuts);
+        ++passes;
+      } else {
+        passes += lightReference(view, settings);
+      }
+    };
+    light();
+    // The opaque frame's cut statistics, before blended layers light the G-buffer again.
+    if (stats && lightcuts_ && settings.readCutStats) stats->cuts = lightcuts_->cutStats();
+    if (gpu_.hasBlended()) {
+      if (!blend_) blend_ = std::make_unique<BlendPass>(gbuffer_.width(), gbuffer_.height());
+      blend_->draw(scene_, gpu_, gbuffer_, view, settings.ambient, geometry_, [&] {
+        glBindVertexArray(emptyVao_.id());
+        light();
+      });
     }
-  };
-  light();
-  // The opaque frame's cut statistics, before blended layers light the G-buffer again.
-  const bool cutStats = stats && lightcuts_ && settings.readCutStats;
-  if (cutStats) stats->cuts = lightcuts_->cutStats();
-  if (gpu_.hasBlended()) {
-    if (!blend_) blend_ = std::make_unique<BlendPass>(gbuffer_.width(), gbuffer_.height());
-    blend_->draw(scene_, gpu_, gbuffer_, view, settings.ambient, geometry_, [&] {
-      glBindVertexArray(emptyVao_.id());
-      light();
-    });
+    glBindVertexArray(0);
   }
-  glBindVertexArray(0);
   glFinish();
   const auto end = std::chrono::steady_clock::now();
 
   Image image;
+  if (settings.aov != Aov::None) image.values = aovChannel(settings.aov).values;
   image.width = gbuffer_.width();
   image.height = gbuffer_.height();
   std::vector<float> rows(std::size_t(image.width) * image.height * 4);
@@ -143,11 +155,13 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
     std::copy_n(&rows[std::size_t(image.height - 1 - y) * stride], stride, &image.rgba[y * stride]);
   }
   if (stats) {
+    // An AOV frame ran no lightcuts pass: it has no cut figures.
+    const LightcutsMethod* cuts = settings.aov == Aov::None ? lightcuts_.get() : nullptr;
     stats->renderMs = std::chrono::duration<double, std::milli>(end - start).count();
     stats->lightingPasses = passes;
-    stats->cutMs = lightcuts_ ? lightcuts_->cutMs() : 0.0;
-    stats->cutsMade = lightcuts_ ? lightcuts_->cutsMade() : 0;
-    stats->cutsKept = lightcuts_ ? lightcuts_->cutsKept() : 0;
+    stats->cutMs = cuts ? cuts->cutMs() : 0.0;
+    stats->cutsMade = cuts ? cuts->cutsMade() : 0;
+    stats->cutsKept = cuts ? cuts->cutsKept() : 0;
   }
   return image;
 }

@@ -1,10 +1,12 @@
 #pragma once
 // The deferred renderer: a G-buffer pass, then the chosen method's lighting passes into a
-// float radiance target, read back as a linear image.
+// float radiance target, read back as a linear image; or, for an AOV, the G-buffer pass's
+// material channel alone.
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "render/aov.h"
 #include "render/blend_pass.h"
 #include "render/gbuffer.h"
 #include "render/geometry_pass.h"
@@ -32,6 +34,8 @@ struct FrameSettings {
   // this (1: every row). For a reference too slow to light whole (bench/); the other rows
   // keep only ambient and emissive light. See rowsLit.
   int rowBandStride = 1;
+  // Not None: the image is this material channel (render/aov.h), with no lighting pass.
+  Aov aov = Aov::None;
 };
 
 inline constexpr int kRowBand = 8;
@@ -42,8 +46,8 @@ struct FrameStats {
   double renderMs = 0.0;  // G-buffer + lighting passes, bracketed by glFinish
   double cutMs = 0.0;     // of which lightcuts' shared cuts on the CPU (LightcutsMethod::cutMs)
   int cutsMade = 0, cutsKept = 0;  // shared cuts found, and kept from earlier frames
-  int lightingPasses = 0;
-  CutStats cuts;  // lightcuts methods only
+  int lightingPasses = 0;          // 0 for an AOV
+  CutStats cuts;                   // lightcuts methods only
 };
 
 // Renders one triangle with the default material at 8×8 and throws the image away:
@@ -53,7 +57,7 @@ struct FrameStats {
 // critical path for every untextured draw. (A textured draw's code depends on its
 // texture's size and sampler, which are not known before the scene is read.) Needs a
 // current context. Throws gl::GlError.
-void warmUpGeometryPass();
+void warmUpGeometryPass(Aov aov = Aov::None);
 
 class Renderer {
  public:
@@ -76,12 +80,15 @@ class Renderer {
 
  private:
   int lightReference(const View& view, const FrameSettings& settings);
+  // The G-buffer pass of `aov`'s variant, made at its first use.
+  const GeometryPass& aovPass(Aov aov);
 
   const Scene& scene_;
   GpuScene gpu_;
   GBuffer gbuffer_;
   GeometryPass geometry_;
   std::unique_ptr<BlendPass> blend_;  // made on the first frame with blended draws
+  std::unique_ptr<GeometryPass> aovGeometry_;
   ReferenceMethod reference_;
   std::unique_ptr<LightcutsMethod> lightcuts_;
   double bakeMs_ = 0.0;
