@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene_builder.h"
+#include "tests/cli_support.h"
 #include "tests/oracle_compare.h"
 #include "tests/test_support.h"
 
@@ -314,6 +316,53 @@ TEST(Material, UnlitShowsItsBaseColour) {
     EXPECT_FLOAT_EQ(px[2], 0.75f);
     EXPECT_FLOAT_EQ(px[3], 1.0f);
   }
+}
+
+// A LINE_STRIP without normals across the view, drawn with its material's base colour,
+// unlit, over an empty background; and --verbose names the extensions that change nothing.
+TEST(Material, LinesWithoutNormalsShowTheirBaseColourAndVerboseListsIgnoredExtensions) {
+  context();
+  // Vertices (−1, 0, 0), (1, 0, 0), (1, 0.5, 0) as a data URI, seen from +Z.
+  const std::string json = R"({"asset":{"version":"2.0"},
+    "extensionsUsed":["KHR_materials_sheen"],
+    "scene":0,"scenes":[{"nodes":[0,1]}],
+    "nodes":[{"mesh":0},{"camera":0,"translation":[0,0.25,3]}],
+    "cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}}],
+    "materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.25,0.5,0.75,1]},
+                  "extensions":{"KHR_materials_sheen":{"sheenColorFactor":[1,1,1]}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":3,"material":0}]}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
+                  "min":[-1,0,0],"max":[1,0.5,0]}],
+    "bufferViews":[{"buffer":0,"byteLength":36}],
+    "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AACAvwAAAAAAAAAAAACAPwAAAAAAAAAAAACAPwAAAD8AAAAA"}]})";
+  const std::string path = (testFolder() / "lines.gltf").string();
+  std::ofstream(path) << json;
+  RenderRequest r;
+  r.width = 64;
+  r.height = 48;
+  r.ambient = glm::vec3(0.3f);
+  const RenderOutcome out = renderScene(loadGltf(path), r);
+  int covered = 0;
+  for (int y = 0; y < r.height; ++y) {
+    for (int x = 0; x < r.width; ++x) {
+      const float* px = out.image.pixel(x, y);
+      if (px[3] == 0.0f) continue;
+      ++covered;
+      EXPECT_FLOAT_EQ(px[0], 0.25f);
+      EXPECT_FLOAT_EQ(px[1], 0.5f);
+      EXPECT_FLOAT_EQ(px[2], 0.75f);
+    }
+  }
+  // One pixel wide: about the strip's length in pixels (about 40 across, 10 up).
+  EXPECT_GT(covered, 30);
+  EXPECT_LT(covered, 150);
+  const std::string png = (testFolder() / "lines.png").string();
+  const ProcessResult cli = manylight("render " + path + " -o " + png + " --size 64x48 --verbose");
+  EXPECT_EQ(cli.exitCode, 0) << cli.err;
+  EXPECT_NE(
+      cli.err.find(path + ": extensions ignored (they change nothing here): KHR_materials_sheen\n"),
+      std::string::npos)
+      << cli.err;
 }
 
 }  // namespace
