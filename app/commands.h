@@ -7,6 +7,7 @@
 #include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ enum ExitCode : int {
 double msSince(Clock::time_point t);
 // "R,G,B" → a colour; throws CLI::ValidationError.
 glm::vec3 parseRgb(const std::string& s);
+// --exposure: "auto" → nothing (render/display.h's automatic exposure), else a finite number
+// of EV; throws CLI::ValidationError.
+std::optional<float> parseExposure(const std::string& s);
 // "WxH" within 1..16384 → width and height; otherwise says why on stderr and returns false.
 bool parseSize(const std::string& text, int* width, int* height);
 // The node colour coding's figures for --stats.
@@ -84,11 +88,11 @@ void addMethodOptions(CLI::App* app, MethodArgs& a);
 struct RenderArgs {
   std::vector<std::string> scenes;
   std::string output, outDir, format = "png", shard, size = "640x480", backend = "auto";
-  std::string ambient = "0,0,0", statsPath;
-  std::string aov;  // empty: the lit image
+  std::string ambient, statsPath;  // ambient empty: 0, or the default rig's
+  std::string aov;                 // empty: the lit image
+  std::string exposure = "auto", toneMap = "pbr-neutral";
   MethodArgs lighting{"reference"};
   int camera = -1;
-  float exposure = 0.0f;
   SceneArgs input;
   bool verbose = false;
 };
@@ -99,7 +103,8 @@ struct PlayArgs {
   std::string scene, output, size = "640x360", backend = "auto", statsPath;
   MethodArgs lighting{"lightcuts"};
   int camera = -1, frames = 0;
-  float orbit = 360.0f, exposure = 0.0f, fps = 30.0f;
+  float orbit = 360.0f, fps = 30.0f;
+  std::string exposure = "auto", toneMap = "pbr-neutral";
   SceneArgs input;
   bool verbose = false;
   bool freshCuts = false;  // lightcuts: every frame's shared cuts per square, none kept

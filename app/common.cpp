@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -21,10 +22,22 @@ double msSince(Clock::time_point t) {
 glm::vec3 parseRgb(const std::string& s) {
   glm::vec3 v;
   char tail = 0;
-  if (std::sscanf(s.c_str(), "%f,%f,%f%c", &v.r, &v.g, &v.b, &tail) != 3 || !(v == v)) {
+  if (std::sscanf(s.c_str(), "%f,%f,%f%c", &v.r, &v.g, &v.b, &tail) != 3 || !std::isfinite(v.r) ||
+      !std::isfinite(v.g) || !std::isfinite(v.b)) {
     throw CLI::ValidationError("--ambient", "expected R,G,B, got '" + s + "'");
   }
   return v;
+}
+
+std::optional<float> parseExposure(const std::string& s) {
+  if (s == "auto") return std::nullopt;
+  float ev = 0.0f;
+  char tail = 0;
+  if (std::sscanf(s.c_str(), "%f%c", &ev, &tail) != 1 || !std::isfinite(ev)) {
+    throw CLI::ValidationError("--exposure",
+                               "expected EV (a finite number) or auto, got '" + s + "'");
+  }
+  return ev;
 }
 
 bool parseSize(const std::string& text, int* width, int* height) {

@@ -41,9 +41,19 @@ int main(int argc, char** argv) {
       ->add_option("--backend", r.backend,
                    "Context: auto (EGL device, EGL surfaceless, OSMesa), egl, osmesa")
       ->capture_default_str();
-  render->add_option("--ambient", r.ambient, "Ambient radiance R,G,B, times albedo + specular")
+  render->add_option("--ambient", r.ambient,
+                     "Ambient radiance R,G,B, times albedo + specular (default: 0, or 0.1 with "
+                     "the default light rig)");
+  render
+      ->add_option("--exposure", r.exposure,
+                   "Exposure in EV (colour scaled by 2^EV), or auto: PNG from the image's 95th "
+                   "percentile of luminance; EXR takes only an explicit EV")
       ->capture_default_str();
-  render->add_option("--exposure", r.exposure, "Exposure in EV: the image is scaled by 2^EV")
+  render
+      ->add_option("--tone-map", r.toneMap,
+                   "PNG display transform after exposure: none (clamp), pbr-neutral (Khronos PBR "
+                   "Neutral), aces; EXR stays linear")
+      ->check(CLI::IsMember(toneMapNames()))
       ->capture_default_str();
   render
       ->add_option("--aov", r.aov,
@@ -85,7 +95,13 @@ int main(int argc, char** argv) {
                       "Index of the glTF camera the orbit starts from (default: the first; "
                       "with none, the thumbnail framing)");
   addMethodOptions(playCmd, p.lighting);
-  playCmd->add_option("--exposure", p.exposure, "Exposure in EV")->capture_default_str();
+  playCmd
+      ->add_option("--exposure", p.exposure,
+                   "Exposure in EV, or auto: fixed from the first frame (PNG and raw frames)")
+      ->capture_default_str();
+  playCmd->add_option("--tone-map", p.toneMap, "Display transform: none, pbr-neutral, aces")
+      ->check(CLI::IsMember(toneMapNames()))
+      ->capture_default_str();
   playCmd->add_option("--backend", p.backend, "Context: auto, egl, osmesa")->capture_default_str();
   addSceneOptions(playCmd, p.input);
   playCmd->add_option("--stats", p.statsPath,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "app/commands.h"
@@ -69,6 +70,11 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
     checkOutputPath(first);
   }
   r.camera = a.camera;
+  r.rigAmbient = true;
+  const std::optional<float> exposure = parseExposure(a.exposure);
+  const ToneMap toneMap = parseToneMap(a.toneMap);
+  const std::string ext = toStdout ? "" : std::filesystem::path(a.output).extension().string();
+  const bool linearOutput = ext == ".exr" || ext == ".EXR";
   r.method = a.lighting.parsed();
   r.lightcuts = a.lighting.lightcuts();
   r.lightcuts.trees = a.input.trees();
@@ -92,20 +98,19 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   std::signal(SIGPIPE, SIG_IGN);  // a closed pipe shows as a failed write, and stops the playback
   bool outputClosed = false;
   std::vector<std::uint8_t> codes;
+  Display display;
   Progress progress(a.frames > 0 ? a.frames : 0);
   const auto playStart = Clock::now();
   const PlaybackOutcome out = play(
       baked.scene, request,
       [&](int frame, const Image& image, const FrameStats&) {
+        // Automatic exposure is fixed from the first frame, so a playback does not pump.
+        if (frame == 0) {
+          display.exposure = exposure ? *exposure : linearOutput ? 0.0f : autoExposure(image);
+          display.toneMap = linearOutput ? ToneMap::None : toneMap;
+        }
         if (toStdout) {
-          codes.resize(image.rgba.size());
-          const double scale = std::exp2(double(a.exposure));
-          for (std::size_t i = 0; i < codes.size(); ++i) {
-            codes[i] =
-                i % 4 == 3
-                    ? std::uint8_t(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f))
-                    : encodeSrgb8(image.rgba[i] * scale);
-          }
+          codes = displayCodes(image, display);
           if (std::fwrite(codes.data(), 1, codes.size(), stdout) != codes.size() ||
               std::fflush(stdout) != 0) {
             outputClosed = true;
@@ -114,7 +119,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         } else {
           std::string name;
           frameName(a.output, frame, &name);
-          writeImage(image, name, a.exposure);
+          writeImage(image, name, display);
         }
         progress.step("frame " + std::to_string(frame));
         return true;

@@ -62,8 +62,17 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     std::cerr << "manylight: " << scenePath << ": no camera; framing the bounds\n";
   if (out.defaultRig)
     std::cerr << "manylight: " << scenePath << ": no lights; using the default three-light rig\n";
-  // Exposure scales light; an AOV holds material values, written as they are.
-  writeImage(out.image, output, request.aov == Aov::None ? a.exposure : 0.0f);
+  // Exposure and the tone map are for light; an AOV holds material values, written as they are.
+  // EXR stays linear: no tone map, and only an explicit exposure.
+  Display display;
+  const bool png = output.size() >= 4 && (output.substr(output.size() - 4) == ".png" ||
+                                          output.substr(output.size() - 4) == ".PNG");
+  if (request.aov == Aov::None) {
+    const std::optional<float> ev = parseExposure(a.exposure);
+    display.exposure = ev ? *ev : png ? autoExposure(out.image) : 0.0f;
+    display.toneMap = png ? parseToneMap(a.toneMap) : ToneMap::None;
+  }
+  writeImage(out.image, output, display);
   nlohmann::json stats = {
       {"scene", scenePath},
       {"output", output},
@@ -77,6 +86,8 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
       {"default_light_rig", out.defaultRig},
       {"framed_camera", out.framed},
       {"lighting_passes", out.frame.lightingPasses},
+      {"exposure_ev", display.exposure},
+      {"tone_map", toneMapName(display.toneMap)},
       {"load_ms", loadMs},
       {"render_ms", out.frame.renderMs},
       {"scene_ms", loadMs + msSince(start)},
@@ -137,7 +148,9 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
     return kExitUsage;
   }
   request.camera = a.camera;
-  request.ambient = parseRgb(a.ambient);
+  request.ambient = a.ambient.empty() ? glm::vec3(0.0f) : parseRgb(a.ambient);
+  request.rigAmbient = a.ambient.empty();
+  parseExposure(a.exposure);  // refused before any work
   request.method = a.lighting.parsed();
   request.aov = parseAov(a.aov);
   request.lightcuts = a.lighting.lightcuts();

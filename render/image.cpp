@@ -18,7 +18,36 @@ void checkOutputPath(const std::string& path) {
   }
 }
 
-void writeImage(const Image& image, const std::string& path, float exposure) {
+std::vector<std::uint8_t> displayCodes(const Image& image, const Display& display) {
+  const double scale = std::exp2(double(display.exposure));
+  const std::size_t n = std::size_t(image.width) * image.height;
+  std::vector<std::uint8_t> codes(n * 4);
+  auto code = [](float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* p = &image.rgba[i * 4];
+    std::uint8_t* c = &codes[i * 4];
+    // Alpha is coverage, not a colour: linear, not encoded.
+    c[3] = code(p[3]);
+    if (image.values == ImageValues::Data) {
+      for (int ch = 0; ch < 3; ++ch) c[ch] = code(p[ch]);
+      continue;
+    }
+    // Images hold colour premultiplied by coverage (as EXR does); PNG's is straight, so
+    // partly covered pixels are divided by it.
+    const double straight = p[3] > 0.0f && p[3] < 1.0f ? 1.0 / p[3] : 1.0;
+    if (display.toneMap == ToneMap::None) {
+      for (int ch = 0; ch < 3; ++ch) c[ch] = encodeSrgb8(p[ch] * scale * straight);
+      continue;
+    }
+    const glm::vec3 linear = glm::vec3(glm::dvec3(p[0], p[1], p[2]) * (scale * straight));
+    const glm::vec3 shown = toneMap(display.toneMap, linear);
+    for (int ch = 0; ch < 3; ++ch) c[ch] = encodeSrgb8(shown[ch]);
+  }
+  return codes;
+}
+
+void writeImage(const Image& image, const std::string& path, const Display& display) {
+  const float exposure = display.exposure;
   const fs::path target(path);
   const std::string ext = target.extension().string();
   checkOutputPath(path);
@@ -29,23 +58,7 @@ void writeImage(const Image& image, const std::string& path, float exposure) {
   bool ok = false;
   std::string reason;
   if (png) {
-    RawImage<std::uint8_t> codes{image.width, image.height, 4, std::vector<std::uint8_t>(n * 4)};
-    const bool colour = image.values == ImageValues::Colour;
-    auto code = [](float v) {
-      return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-    };
-    for (std::size_t i = 0; i < n * 4; ++i) {
-      // Alpha is coverage, not a colour: linear, not encoded. Images hold colour premultiplied
-      // by it (as EXR does); PNG's is straight, so partly covered pixels are divided by it.
-      const float alpha = image.rgba[i | 3];
-      const double straight = alpha > 0.0f && alpha < 1.0f ? 1.0 / alpha : 1.0;
-      if (i % 4 == 3) {
-        codes.pixels[i] = code(image.rgba[i]);
-      } else {
-        codes.pixels[i] = colour ? encodeSrgb8(image.rgba[i] * scale * straight)
-                                 : code(float(image.rgba[i] * scale));
-      }
-    }
+    const RawImage<std::uint8_t> codes{image.width, image.height, 4, displayCodes(image, display)};
     ok = imageIo().writeSrgb8(tmp.c_str(), codes, &reason);
   } else {
     RawImage<float> scaled{image.width, image.height, 4, image.rgba};

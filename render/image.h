@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "render/display.h"
 #include "scene/error.h"
 #include "scene/image_io_module.h"  // ImageComparison
 #include "scene/srgb.h"             // the PNG encoding
@@ -33,11 +34,16 @@ struct Image {
   const float* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
 };
 
-// Writes `image`, its RGB scaled by 2^exposure, to `path`: .png as 8-bit RGBA (RGB
-// sRGB-encoded for ImageValues::Colour, code = 255 · value for Data; alpha 255 · value), .exr
-// as float RGBA holding the values themselves. Creates missing parent folders, writes a temporary
-// file beside the target and renames it, so a failure leaves no partial file. Throws ImageError.
-void writeImage(const Image& image, const std::string& path, float exposure = 0.0f);
+// Writes `image` to `path`: .png as 8-bit RGBA (displayCodes), .exr as float RGBA holding
+// the values themselves, colour scaled by 2^exposure (no tone map: EXR stays linear). Creates
+// missing parent folders, writes a temporary file beside the target and renames it, so a failure
+// leaves no partial file. Throws ImageError.
+void writeImage(const Image& image, const std::string& path, const Display& display = {});
+
+// The 8-bit RGBA codes a PNG of `image` holds: `display`'s exposure and tone map, then the
+// sRGB curve, for colour (straight, not premultiplied); code = 255 · value for data; alpha
+// = 255 · coverage.
+std::vector<std::uint8_t> displayCodes(const Image& image, const Display& display);
 
 // Throws ImageError unless `path` names a format writeImage writes (.png, .exr).
 void checkOutputPath(const std::string& path);

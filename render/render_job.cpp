@@ -26,7 +26,7 @@ PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
                                         request.lightcuts.trees,
                                         defaultRig ? nullptr : request.prebuiltTrees);
   settings.aov = request.aov;
-  settings.ambient = request.ambient;
+  settings.ambient = defaultRig && request.rigAmbient ? glm::vec3(kRigAmbient) : request.ambient;
   settings.lightsPerPass = request.lightsPerPass;
   settings.lightcuts = request.lightcuts;
 }

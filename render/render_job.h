@@ -15,6 +15,9 @@ struct RenderRequest {
   int camera = -1;  // index into Scene::cameras; −1: the first camera, or framing if none
   Method method = Method::Reference;
   glm::vec3 ambient{0.0f};
+  // Where the scene has no lights, the default rig's ambient (kRigAmbient) instead of
+  // `ambient`: what a command line without --ambient asks for.
+  bool rigAmbient = false;
   int lightsPerPass = 0;  // 0: automatic
   LightcutsSettings lightcuts;
   // Lightcuts trees packed before for the scene's own lights (a baked scene); null: build.

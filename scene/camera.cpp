@@ -63,7 +63,7 @@ std::vector<Light> defaultLightRig(const Camera& camera) {
     float lux;
   };
   const Rig rig[] = {
-      {{-0.4f, 0.6f, 0.7f}, 3.0f}, {{0.8f, 0.1f, 0.6f}, 1.0f}, {{0.0f, 0.5f, -0.85f}, 1.5f}};
+      {{-0.4f, 0.6f, 0.7f}, 1.5f}, {{0.8f, 0.1f, 0.6f}, 0.5f}, {{0.0f, 0.5f, -0.85f}, 0.75f}};
   std::vector<Light> lights;
   for (const Rig& r : rig) {
     Light l;

@@ -28,9 +28,13 @@ Camera frameBounds(const Bounds& bounds, int width, int height);
 // turntable orbit (positive turns counter-clockwise seen from above).
 Camera orbitCamera(const Camera& camera, glm::vec3 centre, float radians);
 
-// The light rig used when a scene has no lights: three directional lights fixed to the
-// camera (key 3 lux from upper left, fill 1 lux from the right, rim 1.5 lux from behind),
-// white, so a Lambert surface facing the key reads as light grey.
+// The light rig used when a scene has no lights: three white directional lights fixed to the
+// camera (key 1.5 lux from the upper left, fill 0.5 lux from the right, rim 0.75 lux from
+// behind) and, unless the render asks for another, the ambient radiance kRigAmbient. A white
+// Lambert surface gets at most (1.5 + 0.5 + 0.75)/π + 0.1 = 0.98 however it faces, so
+// nothing clips, and every surface it reaches gets at least the ambient share (metals
+// included: scene/shading_model.h), so nothing is black.
 std::vector<Light> defaultLightRig(const Camera& camera);
+inline constexpr float kRigAmbient = 0.1f;
 
 }  // namespace manylight

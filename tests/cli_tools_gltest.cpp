@@ -78,10 +78,12 @@ TEST(Cli, CompareAssertsARenderAgainstAStoredImage) {
   const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
   const std::string a = (dir / "a.png").string(), b = (dir / "b.png").string(),
                     small = (dir / "small.png").string();
-  ASSERT_EQ(manylight("render " + scene + " -o " + a + " --size 64x48").exitCode, 0);
-  ASSERT_EQ(manylight("render " + scene + " -o " + b + " --size 64x48 --exposure 0.05").exitCode,
+  const std::string linear = " --tone-map none --exposure ";
+  ASSERT_EQ(manylight("render " + scene + " -o " + a + " --size 64x48" + linear + "0").exitCode, 0);
+  ASSERT_EQ(manylight("render " + scene + " -o " + b + " --size 64x48" + linear + "0.05").exitCode,
             0);
-  ASSERT_EQ(manylight("render " + scene + " -o " + small + " --size 32x48").exitCode, 0);
+  ASSERT_EQ(manylight("render " + scene + " -o " + small + " --size 32x48" + linear + "0").exitCode,
+            0);
 
   ProcessResult r = manylight("compare " + a + " " + a);
   EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -264,7 +266,8 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
   const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
   const std::string frames = (dir / "frames" / "f%03d.png").string();
   ProcessResult r =
-      manylight("play " + scene + " -o " + frames + " --frames 4 --orbit 20 --size 48x32 --stats " +
+      manylight("play " + scene + " -o " + frames +
+                " --frames 4 --orbit 20 --size 48x32 --tone-map none --exposure 0 --stats " +
                 (dir / "play.json").string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto stats = nlohmann::json::parse(readFile(dir / "play.json"));
@@ -287,13 +290,14 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
   // are the squares' too); later frames have turned. The kept cuts' frame 0 differs from it
   // within the rule: by at most a code here.
   const fs::path still = dir / "still.png";
-  ASSERT_EQ(
-      manylight("render " + scene + " -o " + still.string() + " --size 48x32 --method lightcuts")
-          .exitCode,
-      0);
+  ASSERT_EQ(manylight("render " + scene + " -o " + still.string() +
+                      " --size 48x32 --method lightcuts --tone-map none --exposure 0")
+                .exitCode,
+            0);
   const std::string fresh = (dir / "fresh" / "f%03d.png").string();
   ASSERT_EQ(manylight("play " + scene + " -o " + fresh +
-                      " --frames 4 --orbit 20 --size 48x32 --fresh-cuts")
+                      " --frames 4 --orbit 20 --size 48x32 --fresh-cuts --tone-map none "
+                      "--exposure 0")
                 .exitCode,
             0);
   EXPECT_EQ(readFile(dir / "fresh" / "f000.png"), readFile(still));
@@ -308,7 +312,8 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
   // Raw frames on stdout: 4 × 48 × 32 RGBA8, the first equal to the PNG's codes.
   const fs::path raw = dir / "frames.rgba";
   ASSERT_EQ(shell(std::string(MANYLIGHT_BIN) + " play " + scene +
-                  " -o - --frames 4 --orbit 20 --size 48x32 > " + raw.string()),
+                  " -o - --frames 4 --orbit 20 --size 48x32 --tone-map none --exposure 0 > " +
+                  raw.string()),
             0);
   const std::string bytes = readFile(raw);
   ASSERT_EQ(bytes.size(), 4u * 48 * 32 * 4);

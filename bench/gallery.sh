@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The gallery: every renderable real asset of ../shared/scenes (when that folder exists; not
+# the validator and defect collections) and the project's own scenes/, each rendered with the
+# bare `render` command (its defaults: thumbnail framing, default rig, auto exposure, PBR
+# Neutral), in one contact sheet with their names. Look at it before and after any change to
+# shading, loading or output.
+# Usage: bench/gallery.sh [OUT.png [render options...]]   (default docs/gallery.png; run from
+# the repository root after a build)
+set -euo pipefail
+out="${1:-docs/gallery.png}"
+shift || true
+bin="$PWD/build/bin"
+shared="$PWD/../shared/scenes"
+font=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf  # fonts-dejavu-core (ci/install-deps.sh)
+tile=200x150
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+files=(scenes/*.gltf)
+if [ -d "$shared" ]; then
+  skip='/(BlenderIO-edge-cases|MagnumGltfImporterTests|glTF-Validator-tests|glTF-Asset-Generator-Compatibility|glTFast-test-models|tinygltf-defects|assimp-glTF2-defects)/'
+  while IFS= read -r f; do files+=("$f"); done < <(find "$shared" \( -name '*.gltf' -o -name '*.glb' \) | grep -v -E "$skip" | LC_ALL=C sort)
+fi
+tiles=()
+i=0
+for f in "${files[@]}"; do
+  name="${f#"$shared"/}"
+  name="${name//\/glTF\//\/}"
+  i=$((i + 1))
+  if "$bin/manylight" render "$f" -o "$work/r$i.png" --size "$tile" "$@" 2>"$work/e$i.txt"; then
+    label="$name"
+  else
+    oiiotool --pattern constant:color=0,0,0,0 "$tile" 4 -o "$work/r$i.png"
+    label="$name: refused"
+  fi
+  oiiotool "$work/r$i.png" --pattern constant:color=0.2,0.2,0.23,1 "$tile" 4 --over \
+    --text:x=4:y=145:size=11:color=0.9,0.9,0.9,1:font="$font" "$label" -o "$work/t$(printf %03d $i).png"
+  tiles+=("$work/t$(printf %03d $i).png")
+done
+columns=6
+rows=$(((${#tiles[@]} + columns - 1) / columns))
+mkdir -p "$(dirname "$out")"
+oiiotool "${tiles[@]}" --mosaic:pad=2 "${columns}x${rows}" -o "$out"
+echo "gallery.sh: ${#tiles[@]} scenes into $out"
