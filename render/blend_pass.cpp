@@ -11,13 +11,6 @@ using namespace gl::api;
 
 namespace {
 
-void allocate(const gl::Texture& t, GLint internal, GLenum format, GLenum type, int w, int h) {
-  glBindTexture(GL_TEXTURE_2D, t.id());
-  glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format, type, nullptr);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-}
-
 void blit(GLuint from, GLuint to, int w, int h, GLbitfield mask) {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
@@ -31,8 +24,8 @@ BlendPass::BlendPass(int width, int height)
     : width_(width),
       height_(height),
       program_(gl::cachedProgram("fullscreen.vert", "blend_composite.frag", {}, {"oColour"})) {
-  allocate(savedDepth_, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
-  allocate(composite_, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
+  allocateTarget(savedDepth_, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
+  allocateTarget(composite_, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
   glBindTexture(GL_TEXTURE_2D, 0);
   const GLenum none = GL_NONE, colour = GL_COLOR_ATTACHMENT0;
   glBindFramebuffer(GL_FRAMEBUFFER, depthFramebuffer_.id());

@@ -8,14 +8,15 @@ namespace manylight {
 
 using namespace gl::api;
 
-namespace {
-
-void allocate(const gl::Texture& t, GLint internal, GLenum format, GLenum type, int w, int h) {
+void allocateTarget(const gl::Texture& t, GLint internal, GLenum format, GLenum type, int w,
+                    int h) {
   glBindTexture(GL_TEXTURE_2D, t.id());
   glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format, type, nullptr);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
+
+namespace {
 
 void checkComplete(const char* which) {
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
@@ -30,8 +31,9 @@ void checkComplete(const char* which) {
 }  // namespace
 
 GBuffer::GBuffer(int width, int height) : width_(width), height_(height) {
-  for (const gl::Texture& t : targets_) allocate(t, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
-  allocate(depth_, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
+  for (const gl::Texture& t : targets_)
+    allocateTarget(t, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
+  allocateTarget(depth_, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
   glBindTexture(GL_TEXTURE_2D, 0);
 
   glBindFramebuffer(GL_FRAMEBUFFER, geometry_.id());

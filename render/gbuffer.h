@@ -8,6 +8,9 @@
 
 namespace manylight {
 
+// Allocates `t` as a w × h render target of `internal` format, sampled NEAREST.
+void allocateTarget(const gl::Texture& t, GLint internal, GLenum format, GLenum type, int w, int h);
+
 class GBuffer {
  public:
   enum Target { kPosition, kNormal, kAlbedo, kSpecular, kRadiance, kTargetCount };

@@ -72,6 +72,18 @@ Scene planeScene(const std::string& name, const BuilderMaterial& m, bool secondU
   return loadGltf(path);
 }
 
+// A 2×2 plane carrying `m` under `light`, seen from straight above (near its centre): for
+// checks of one pixel. Returns the loaded scene.
+Scene topDownPlane(const std::string& name, const BuilderMaterial& m, const Light& light) {
+  GltfBuilder b;
+  b.addPlane({0, 0, 0}, {2, 2}, b.addMaterial(m));
+  b.addLight(light);
+  b.addPerspectiveCamera({0, 2, 0.5f}, {0, 0, 0}, 0.6f);
+  const std::string path = (testFolder() / (name + ".gltf")).string();
+  b.write(path);
+  return loadGltf(path);
+}
+
 RenderRequest request() {
   RenderRequest r;
   r.width = 160;
@@ -241,18 +253,12 @@ TEST(Material, AmbientAloneGivesEachMaterialItsReflectance) {
     m.baseColor = glm::vec4(base, 1.0f);
     m.metallic = c.metallic;
     m.roughness = c.roughness;
-    GltfBuilder b;
-    b.addPlane({0, 0, 0}, {2, 2}, b.addMaterial(m));
     Light off;
     off.intensity = 0.0f;  // a light that gives nothing, so no default rig stands in
-    b.addLight(off);
-    b.addPerspectiveCamera({0, 2, 0.5f}, {0, 0, 0}, 0.6f);
-    const std::string path = (testFolder() / "furnace.gltf").string();
-    b.write(path);
     RenderRequest r;
     r.width = r.height = 16;
     r.ambient = glm::vec3(0.5f);
-    const RenderOutcome out = renderScene(loadGltf(path), r);
+    const RenderOutcome out = renderScene(topDownPlane("furnace", m, off), r);
     const float* px = out.image.pixel(8, 8);
     for (int ch = 0; ch < 3; ++ch) {
       EXPECT_NEAR(px[ch], 0.5f * c.reflectance[ch], 1e-3f * c.reflectance[ch])
@@ -295,22 +301,17 @@ TEST(Material, UnlitShowsItsBaseColour) {
   BuilderMaterial m;
   m.baseColor = {0.25f, 0.5f, 0.75f, 1.0f};
   m.unlit = true;
-  GltfBuilder b;
-  b.addPlane({0, 0, 0}, {2, 2}, b.addMaterial(m));
   Light sun;
   sun.type = LightType::Directional;
   sun.direction = {0, -1, 0};
   sun.intensity = 5.0f;
-  b.addLight(sun);
-  b.addPerspectiveCamera({0, 2, 0.5f}, {0, 0, 0}, 0.6f);
-  const std::string path = (testFolder() / "unlit.gltf").string();
-  b.write(path);
+  const Scene scene = topDownPlane("unlit", m, sun);
   RenderRequest r;
   r.width = r.height = 16;
   r.ambient = glm::vec3(0.3f);
   for (const Method method : {Method::Reference, Method::Lightcuts}) {
     r.method = method;
-    const float* px = renderScene(loadGltf(path), r).image.pixel(8, 8);
+    const float* px = renderScene(scene, r).image.pixel(8, 8);
     EXPECT_FLOAT_EQ(px[0], 0.25f);
     EXPECT_FLOAT_EQ(px[1], 0.5f);
     EXPECT_FLOAT_EQ(px[2], 0.75f);
