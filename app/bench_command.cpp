@@ -351,6 +351,7 @@ int runBench(const BenchArgs& a) {
 
   const std::unique_ptr<gl::Context> context = openContext(gl::parseBackend(a.backend), a.verbose);
   if (!context) return kExitNoContext;
+  if (!sizeFitsContext(settings.width, settings.height)) return kExitFailure;
   const Scene scene = sweepScene(a.scene);
   Sweep sweep(scene, settings);
 

@@ -13,6 +13,7 @@
 
 #include "bake/baked_file.h"
 #include "gl/context.h"
+#include "gl/limits.h"
 #include "render/colour_calibration.h"
 #include "render/image.h"
 #include "render/lightcuts_method.h"
@@ -33,13 +34,27 @@ enum ExitCode : int {
 };
 
 double msSince(Clock::time_point t);
-// "R,G,B" → a colour; throws CLI::ValidationError.
+// `text` as a finite number (NaN, infinities and trailing characters refused), for options
+// whose text is a number or a word; throws CLI::ValidationError naming `option`.
+double finiteNumber(const std::string& option, const std::string& text);
+// Adds a finiteness check to every float and double option of app's subcommands (CLI11
+// reads "nan" and "inf" as numbers, and its Range lets NaN through), and an integer check to
+// every integer option, so each says which number it expected. Options holding numbers in
+// text (--ambient, --size, lists) are checked by their parsers. Call after declaring them.
+void requireFiniteNumbers(CLI::App& app);
+// "R,G,B" of finite numbers → a colour; throws CLI::ValidationError.
 glm::vec3 parseRgb(const std::string& s);
 // --exposure: "auto" → nothing (render/display.h's automatic exposure), else a finite number
 // of EV; throws CLI::ValidationError.
 std::optional<float> parseExposure(const std::string& s);
-// "WxH" within 1..16384 → width and height; otherwise says why on stderr and returns false.
+// The most pixels a side of --size may have before the context's own limits are asked.
+inline constexpr int kMaxSizeSide = 1 << 16;
+// "WxH" within 1..kMaxSizeSide → width and height; otherwise says why on stderr and returns
+// false.
 bool parseSize(const std::string& text, int* width, int* height);
+// Whether the current context can render width × height (gl::renderSizeExceeded); otherwise
+// says which limit --size exceeds on stderr and returns false.
+bool sizeFitsContext(int width, int height);
 // The node colour coding's figures for --stats.
 nlohmann::json nodeColourStats(const NodeColourCoder& c);
 // A context, or null after saying why there is none.
@@ -76,6 +91,7 @@ struct MethodArgs {
   float error = 0.02f;
   int maxCut = LightcutsSettings{}.maxCut;
   int cutTile = LightcutsSettings{}.tileSize;
+  CLI::Option* methodOption = nullptr;  // --method, to tell a default from a choice
 
   // Throws Error for an unknown method.
   Method parsed() const { return parseMethod(method); }

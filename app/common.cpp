@@ -1,5 +1,7 @@
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "app/commands.h"
@@ -13,10 +15,58 @@ nlohmann::json perChannel(const double (&v)[3]) {
   return nlohmann::json::array({v[0], v[1], v[2]});
 }
 
+// Whether all of `text` is one finite number (as std::stod reads it), and which.
+bool readFinite(const std::string& text, double* v) {
+  std::size_t used = 0;
+  try {
+    *v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return false;  // no number, or one beyond double's range
+  }
+  return used == text.size() && std::isfinite(*v);
+}
+
+std::string notFinite(const std::string& text) {
+  return "expected a finite number, got '" + text + "'";
+}
+
 }  // namespace
 
 double msSince(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+double finiteNumber(const std::string& option, const std::string& text) {
+  double v = 0.0;
+  if (!readFinite(text, &v)) throw CLI::ValidationError(option, notFinite(text));
+  return v;
+}
+
+void requireFiniteNumbers(CLI::App& app) {
+  const CLI::Validator finite(
+      [](std::string& text) {
+        double v = 0.0;
+        return readFinite(text, &v) ? std::string() : notFinite(text);
+      },
+      "", "finite");
+  const CLI::Validator integer(
+      [](std::string& text) {
+        char* end = nullptr;
+        errno = 0;
+        std::strtoll(text.c_str(), &end, 0);  // base 0, as CLI11 reads integers
+        return !text.empty() && *end == '\0' && errno == 0
+                   ? std::string()
+                   : "expected an integer, got '" + text + "'";
+      },
+      "", "integer");
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    for (CLI::Option* option : command->get_options()) {
+      // Type names begin with FLOAT, INT or UINT (and go on with their checks' names).
+      const std::string type = option->get_type_name();
+      if (type.rfind("FLOAT", 0) == 0) option->check(finite);
+      if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0) option->check(integer);
+    }
+  }
 }
 
 glm::vec3 parseRgb(const std::string& s) {
@@ -24,28 +74,35 @@ glm::vec3 parseRgb(const std::string& s) {
   char tail = 0;
   if (std::sscanf(s.c_str(), "%f,%f,%f%c", &v.r, &v.g, &v.b, &tail) != 3 || !std::isfinite(v.r) ||
       !std::isfinite(v.g) || !std::isfinite(v.b)) {
-    throw CLI::ValidationError("--ambient", "expected R,G,B, got '" + s + "'");
+    throw CLI::ValidationError("--ambient",
+                               "expected R,G,B, three finite numbers, got '" + s + "'");
   }
   return v;
 }
 
 std::optional<float> parseExposure(const std::string& s) {
   if (s == "auto") return std::nullopt;
-  float ev = 0.0f;
-  char tail = 0;
-  if (std::sscanf(s.c_str(), "%f%c", &ev, &tail) != 1 || !std::isfinite(ev)) {
-    throw CLI::ValidationError("--exposure",
-                               "expected EV (a finite number) or auto, got '" + s + "'");
-  }
-  return ev;
+  const double ev = finiteNumber("--exposure", s);
+  // 2^±128 leaves a float's range: such an exposure turns every pixel white or black.
+  if (std::abs(ev) > 128.0)
+    throw CLI::ValidationError("--exposure", "expected an EV within ±128 or auto, got '" + s + "'");
+  return float(ev);
 }
 
 bool parseSize(const std::string& text, int* width, int* height) {
   char tail = 0;
   if (std::sscanf(text.c_str(), "%dx%d%c", width, height, &tail) == 2 && *width >= 1 &&
-      *height >= 1 && *width <= 16384 && *height <= 16384)
+      *height >= 1 && *width <= kMaxSizeSide && *height <= kMaxSizeSide)
     return true;
-  std::cerr << "manylight: --size: expected WxH within 1..16384, got '" << text << "'\n";
+  std::cerr << "manylight: --size: expected WxH within 1.." << kMaxSizeSide << ", got '" << text
+            << "'\n";
+  return false;
+}
+
+bool sizeFitsContext(int width, int height) {
+  const std::string exceeded = gl::renderSizeExceeded(width, height);
+  if (exceeded.empty()) return true;
+  std::cerr << "manylight: --size " << width << "x" << height << " " << exceeded << "\n";
   return false;
 }
 
@@ -88,12 +145,13 @@ std::unique_ptr<gl::Context> openContext(gl::Backend backend, bool verbose) {
 }
 
 void addMethodOptions(CLI::App* app, MethodArgs& a) {
-  app->add_option(
-         "--method", a.method,
-         "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
-         "cuts through a light tree), lightcuts-distance (cuts by radius of influence)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
+  a.methodOption =
+      app->add_option(
+             "--method", a.method,
+             "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
+             "cuts through a light tree), lightcuts-distance (cuts by radius of influence)")
+          ->capture_default_str()
+          ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
   app->add_option("--error", a.error, "lightcuts: relative error ε of the stopping rule")
       ->capture_default_str()
       ->check(CLI::Range(1e-6f, 1.0f));

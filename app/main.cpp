@@ -157,6 +157,10 @@ int main(int argc, char** argv) {
                       "Where to write the difference image when they differ (default: B.diff.png)");
   BenchArgs benchArgs;
   CLI::App* bench = addBenchCommand(app, benchArgs);
+  requireFiniteNumbers(app);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "manylight: " + std::string(e.what()) + "\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -92,6 +92,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   if (baked.hasTrees) r.prebuiltTrees = &baked.packed;
   const std::unique_ptr<gl::Context> context = openContext(backend, a.verbose);
   if (!context) return kExitNoContext;
+  if (!sizeFitsContext(r.width, r.height)) return kExitFailure;
 
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);

@@ -55,9 +55,20 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     for (const std::string& e : scene.ignoredExtensions) std::cerr << " " << e;
     std::cerr << "\n";
   }
+  if (request.method == Method::Reference && request.aov == Aov::None &&
+      a.lighting.methodOption->count() == 0) {
+    const std::string note =
+        slowReferenceNote(scenePath, scene.lights.size(), request.width, request.height);
+    if (!note.empty()) std::cerr << "manylight: " << note << "\n";
+  }
   RenderRequest bakedRequest = request;
   if (baked.hasTrees) bakedRequest.prebuiltTrees = &baked.packed;
-  const RenderOutcome out = renderScene(scene, bakedRequest);
+  RenderOutcome out;
+  try {
+    out = renderScene(scene, bakedRequest);
+  } catch (const gl::GlError& e) {
+    throw Error(scenePath + ": " + e.what());  // the driver's message names no scene
+  }
   if (out.framed && a.verbose)
     std::cerr << "manylight: " << scenePath << ": no camera; framing the bounds\n";
   if (out.defaultRig)
@@ -173,10 +184,13 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   // is inside dlopen (the first scene's OpenImageIO).
   const std::unique_ptr<gl::Context> context = openContext(backend, a.verbose);
   if (!context) return kExitNoContext;
-  std::future<LoadedScene> next = startLoading(a, jobs[0].scene);
+  if (!sizeFitsContext(request.width, request.height)) return kExitFailure;
+  // A shard past the end of a short list has no scene.
+  std::future<LoadedScene> next;
+  if (!jobs.empty()) next = startLoading(a, jobs[0].scene);
   // A scene that fails does so within a millisecond or two (a missing file, bad JSON) and
   // then has no use for the compiled code; a scene that reads takes far longer than 10 ms.
-  if (next.wait_for(std::chrono::milliseconds(10)) != std::future_status::ready) {
+  if (next.valid() && next.wait_for(std::chrono::milliseconds(10)) != std::future_status::ready) {
     warmUpGeometryPass(request.aov);
   }
   if (!batch) {

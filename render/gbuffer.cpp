@@ -1,8 +1,10 @@
 #include "render/gbuffer.h"
 
 #include <cstdio>
+#include <string>
 
 #include "gl/context.h"
+#include "gl/limits.h"
 
 namespace manylight {
 
@@ -31,10 +33,24 @@ void checkComplete(const char* which) {
 }  // namespace
 
 GBuffer::GBuffer(int width, int height) : width_(width), height_(height) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  const std::string exceeded = gl::renderSizeExceeded(width, height);
+  if (!exceeded.empty()) throw gl::GlError("image size " + size + " " + exceeded);
   for (const gl::Texture& t : targets_)
     allocateTarget(t, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
   allocateTarget(depth_, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
   glBindTexture(GL_TEXTURE_2D, 0);
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR) {
+    // Within the limits a driver may still refuse the memory: 84 bytes a pixel.
+    const double mib = double(width) * height * (kTargetCount * 16 + 4) / (1 << 20);
+    char message[160];
+    std::snprintf(message, sizeof message,
+                  "image size %s: the driver cannot allocate the G-buffer's %.0f MiB (OpenGL "
+                  "error 0x%04X)",
+                  size.c_str(), mib, unsigned(error));
+    throw gl::GlError(message);
+  }
 
   glBindFramebuffer(GL_FRAMEBUFFER, geometry_.id());
   GLenum buffers[kTargetCount];

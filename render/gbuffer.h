@@ -15,7 +15,9 @@ class GBuffer {
  public:
   enum Target { kPosition, kNormal, kAlbedo, kSpecular, kRadiance, kTargetCount };
 
-  // Throws gl::GlError if the driver cannot render to these formats.
+  // Throws gl::GlError naming the limit (gl/limits.h) when the context cannot render
+  // width × height, when the driver cannot allocate the targets, or cannot render to these
+  // formats.
   GBuffer(int width, int height);
 
   int width() const { return width_; }

@@ -1,5 +1,6 @@
 #include "render/render_job.h"
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 
@@ -42,6 +43,23 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   out.image =
       p.renderer->render(makeView(p.camera, request.width, request.height), p.settings, &out.frame);
   return out;
+}
+
+double referenceSecondsEstimate(std::size_t lights, int width, int height) {
+  return double(lights) * width * height / kReferenceEvaluationsPerSecond;
+}
+
+std::string slowReferenceNote(const std::string& scene, std::size_t lights, int width, int height) {
+  if (lights < kLightcutsFasterLights ||
+      double(lights) * width * height <= kSlowReferenceEvaluations)
+    return {};
+  return scene + ": " + std::to_string(lights) + " lights × " + std::to_string(width) + "×" +
+         std::to_string(height) +
+         " pixels with the reference method (every light at every pixel) will take up to "
+         "about " +
+         std::to_string(std::llround(referenceSecondsEstimate(lights, width, height))) +
+         " s at llvmpipe's 400 M light evaluations a second; --method lightcuts takes 0.4–2 s "
+         "for 65,536 to 1,048,576 lights at 640×480 there";
 }
 
 std::vector<Thumbnail> planThumbnails(const std::vector<std::string>& scenes,

@@ -56,6 +56,27 @@ struct PreparedRender {
   FrameSettings settings;
 };
 
+// Light evaluations a second of the reference method on llvmpipe with 2 cores (README,
+// Measured, "reference throughput": 409–463 M/s with point lights, 323–482 M/s mixed).
+inline constexpr double kReferenceEvaluationsPerSecond = 4e8;
+// Light evaluations of a reference frame past which `render` says that lightcuts would be
+// faster, when the reference was its default and not asked for: 2^32, about 11 s at
+// kReferenceEvaluationsPerSecond.
+inline constexpr double kSlowReferenceEvaluations = 4294967296.0;
+// Lights from which lightcuts is faster than the reference (README, Benchmarks: at 64 lights
+// the reference wins, at 1,024 lightcuts is 2.0–2.8× faster in three layouts of four).
+inline constexpr std::size_t kLightcutsFasterLights = 1024;
+
+// Seconds a reference frame of `lights` over width × height takes at
+// kReferenceEvaluationsPerSecond when every pixel is covered (background pixels cost nothing).
+double referenceSecondsEstimate(std::size_t lights, int width, int height);
+
+// Empty when a reference frame of `lights` over width × height is at most
+// kSlowReferenceEvaluations light evaluations, or lights are fewer than
+// kLightcutsFasterLights; otherwise one line, "SCENE: N lights × W×H pixels with the
+// reference method ... will take up to about T s ...; --method lightcuts takes ...".
+std::string slowReferenceNote(const std::string& scene, std::size_t lights, int width, int height);
+
 // Renders with the current context. Throws Error (bad request) or gl::GlError.
 RenderOutcome renderScene(const Scene& scene, const RenderRequest& request);
 

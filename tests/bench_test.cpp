@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "render/image_errors.h"
+#include "render/render_job.h"
 #include "scene/error.h"
 #include "scene/light_layouts.h"
 
@@ -118,6 +119,30 @@ TEST(ImageErrors, NaNAndBlackReferencesReadAsLargeErrors) {
   EXPECT_NEAR(black.maxRelative, 1e-3 / kRelativeErrorFloor, 1e-3);  // the floor divides
   Image other = image(3, 1, 0.0f);
   EXPECT_THROW(measureErrors(other, ref), ImageError);
+}
+
+TEST(ReferenceEstimate, FollowsTheMeasuredThroughput) {
+  // README, Benchmarks: the reference took 31 s at 65,536 uniform lights and 632 s
+  // (estimated) at 1,048,576 at 640×480, with 76% of the pixels covered; the estimate counts
+  // every pixel.
+  EXPECT_NEAR(referenceSecondsEstimate(65536, 640, 480), 50.3, 0.1);
+  EXPECT_NEAR(referenceSecondsEstimate(1048576, 640, 480), 805.3, 0.1);
+  EXPECT_EQ(referenceSecondsEstimate(0, 640, 480), 0.0);
+}
+
+TEST(ReferenceEstimate, NotesOnlyManyLightsOverManyPixels) {
+  // 2^32 light evaluations: 13,981 lights at 640×480 are under it, 13,982 over.
+  EXPECT_EQ(slowReferenceNote("a.glb", 13981, 640, 480), "");
+  EXPECT_EQ(slowReferenceNote("a.glb", 13982, 640, 480),
+            "a.glb: 13982 lights × 640×480 pixels with the reference method (every light at "
+            "every pixel) will take up to about 11 s at llvmpipe's 400 M light evaluations a "
+            "second; --method lightcuts takes 0.4–2 s for 65,536 to 1,048,576 lights at 640×480 "
+            "there");
+  EXPECT_NE(slowReferenceNote("big.gltf", 1048576, 640, 480).find("about 805 s"),
+            std::string::npos);
+  // Below 1,024 lights the reference is the faster method, however large the image.
+  EXPECT_EQ(slowReferenceNote("a.glb", 1023, 65536, 65536), "");
+  EXPECT_NE(slowReferenceNote("a.glb", 1024, 4096, 4096), "");
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The GPU reference method against the CPU double-precision oracle, on generated scenes.
 #include <gtest/gtest.h>
 
+#include "gl/limits.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
 #include "tests/oracle.h"
@@ -148,6 +149,24 @@ TEST(Render, SmallImagesWithManyLightsStayWithinTheLoopLimit) {
 
 namespace manylight::testing {
 namespace {
+
+TEST(Render, AGBufferPastTheContextsLimitsNamesTheLimit) {
+  context();
+  const gl::RenderSizeLimits limits = gl::renderSizeLimits();
+  EXPECT_GE(limits.maxTextureSize, 1024);  // OpenGL 3.3's minimum
+  EXPECT_GE(limits.maxRenderbufferSize, 1024);
+  const int side = limits.maxTextureSize + 1;
+  EXPECT_EQ(gl::renderSizeExceeded(16, 16), "");
+  EXPECT_EQ(gl::renderSizeExceeded(16, side),
+            "exceeds the context's GL_MAX_TEXTURE_SIZE " + std::to_string(side - 1));
+  try {
+    GBuffer g(side, 1);
+    ADD_FAILURE() << "a " << side << "x1 G-buffer was made";
+  } catch (const gl::GlError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "image size " + std::to_string(side) + "x1 " + gl::renderSizeExceeded(side, 1));
+  }
+}
 
 TEST(Shaders, EveryLightingVariantCompilesAndLinks) {
   context();

@@ -1,0 +1,200 @@
+// The manylight program's numeric options and the context's limits, as a user meets them:
+// non-finite numbers, sizes past what the context renders, and the note before a slow
+// reference render.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "gl/limits.h"
+#include "render/render_job.h"
+#include "tests/cli_support.h"
+
+namespace manylight::testing {
+namespace {
+
+// Every numeric option of every command, as "COMMAND ARGS|OPTION|VALUE" where X in VALUE is
+// replaced by the number under test. Options holding integers refuse "nan" and "inf" as
+// non-numbers; float options by the finiteness check; text options by their parsers.
+struct NumericOption {
+  const char* command;  // with the arguments the command needs to get as far as its options
+  const char* option;
+  const char* value;
+};
+constexpr const char* kRender = "render x.gltf -o OUT/y.png";
+constexpr const char* kPlay = "play x.gltf -o OUT/f%04d.png";
+constexpr const char* kBake = "bake x.gltf -o OUT/y.mlbake";
+constexpr const char* kBench = "bench --csv OUT/b.csv";
+const NumericOption kNumericOptions[] = {
+    {kRender, "--exposure", "X"},
+    {kRender, "--error", "X"},
+    {kRender, "--ambient", "X,0,0"},
+    {kRender, "--ambient", "0,X,0"},
+    {kRender, "--ambient", "0,0,X"},
+    {kRender, "--crease-angle", "X"},
+    {kRender, "--size", "Xx16"},
+    {kRender, "--size", "16xX"},
+    {kRender, "--camera", "X"},
+    {kRender, "--max-cut", "X"},
+    {kRender, "--cut-tile", "X"},
+    {kRender, "--light-budget", "X"},
+    {kRender, "--max-file-bytes", "X"},
+    {kRender, "--max-texture-size", "X"},
+    {kRender, "--max-texture-pixels", "X"},
+    {kRender, "--max-triangles", "X"},
+    {"render x.gltf --out-dir OUT", "--shard", "X/2"},
+    {"render x.gltf --out-dir OUT", "--shard", "0/X"},
+    {kPlay, "--fps", "X"},
+    {kPlay, "--orbit", "X"},
+    {kPlay, "--exposure", "X"},
+    {kPlay, "--error", "X"},
+    {kPlay, "--frames", "X"},
+    {kPlay, "--size", "Xx16"},
+    {kPlay, "--camera", "X"},
+    {kPlay, "--max-cut", "X"},
+    {kPlay, "--cut-tile", "X"},
+    {kPlay, "--crease-angle", "X"},
+    {kPlay, "--light-budget", "X"},
+    {kBake, "--crease-angle", "X"},
+    {kBake, "--light-budget", "X"},
+    {kBake, "--max-triangles", "X"},
+    {kBench, "--reference-seconds", "X"},
+    {kBench, "--errors", "0.01,X"},
+    {kBench, "--counts", "64,X"},
+    {kBench, "--repeats", "X"},
+    {kBench, "--frames", "X"},
+    {kBench, "--max-cut", "X"},
+    {kBench, "--light-budget", "X"},
+    {kBench, "--size", "16xX"},
+    {"compare OUT/a.png OUT/b.png", "--max-abs", "X"},
+    {"compare OUT/a.png OUT/b.png", "--max-fraction", "X"},
+    {"fit-gamma --calibrate x.gltf", "--codes", "X..255"},
+    {"fit-gamma --calibrate x.gltf", "--codes", "11..X"},
+};
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at))
+    text.replace(at, from.size(), to), at += to.size();
+  return text;
+}
+
+TEST(CliOptions, NonFiniteNumbersAreRefusedNamingTheOption) {
+  const std::string out = testFolder().string();
+  for (const NumericOption& o : kNumericOptions) {
+    for (const char* number : {"nan", "inf", "-inf", "NaN", "infinity"}) {
+      const std::string args =
+          replaced(o.command, "OUT", out) + " " + o.option + " " + replaced(o.value, "X", number);
+      SCOPED_TRACE(args);
+      const ProcessResult r = manylight(args);
+      EXPECT_EQ(r.exitCode, 2) << r.err;
+      EXPECT_EQ(r.err.rfind("manylight: " + std::string(o.option) + ": ", 0), 0u) << r.err;
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+      EXPECT_TRUE(fs::is_empty(testFolder())) << "an output was written";
+    }
+  }
+}
+
+TEST(CliOptions, FloatOptionsSayAFiniteNumberIsExpected) {
+  // Options without a range: the finiteness check is all that stands between NaN and a
+  // black image.
+  const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
+  const std::string out = (testFolder() / "x.png").string();
+  struct Case {
+    std::string args, message;
+  };
+  const Case cases[] = {
+      {"render " + scene + " -o " + out + " --exposure nan",
+       "manylight: --exposure: expected a finite number, got 'nan'\n"},
+      {"render " + scene + " -o " + out + " --exposure -inf",
+       "manylight: --exposure: expected a finite number, got '-inf'\n"},
+      {"render " + scene + " -o " + out + " --error nan",
+       "manylight: --error: expected a finite number, got 'nan'\n"},
+      {"render " + scene + " -o " + out + " --ambient 0,inf,0",
+       "manylight: --ambient: expected R,G,B, three finite numbers, got '0,inf,0'\n"},
+      {"play " + scene + " -o " + out + " --orbit inf",
+       "manylight: --orbit: expected a finite number, got 'inf'\n"},
+      {"play " + scene + " -o " + out + " --fps nan",
+       "manylight: --fps: expected a finite number, got 'nan'\n"},
+      {"compare " + out + " " + out + " --max-fraction nan",
+       "manylight: --max-fraction: expected a finite number, got 'nan'\n"},
+  };
+  for (const Case& c : cases) {
+    const ProcessResult r = manylight(c.args);
+    EXPECT_EQ(r.exitCode, 2) << c.args;
+    EXPECT_EQ(r.err, c.message) << c.args;
+  }
+  const ProcessResult fine = manylight("render " + scene + " -o " + out +
+                                       " --size 16x16 --exposure -1.5 --ambient 0.1,0,1e-3");
+  EXPECT_EQ(fine.exitCode, 0) << fine.err;
+}
+
+// The largest side --size takes before asking the context (app/commands.h, kMaxSizeSide).
+constexpr int kLargestSizeSide = 1 << 16;
+
+TEST(CliOptions, SizesPastTheContextsLimitsAreRefusedBeforeRendering) {
+  context();
+  const int side = gl::renderSizeLimits().maxTextureSize + 1;
+  if (side > kLargestSizeSide) GTEST_SKIP() << "the context renders sides of " << side - 1;
+  const std::string size = std::to_string(side) + "x16";
+  const std::string expected =
+      "manylight: --size " + size + " " + gl::renderSizeExceeded(side, 16) + "\n";
+  EXPECT_NE(expected.find("exceeds the context's GL_MAX_TEXTURE_SIZE"), std::string::npos);
+  const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
+  const fs::path dir = testFolder();
+  const std::string commands[] = {
+      "render " + scene + " -o " + (dir / "x.png").string(),
+      "render " + scene + " --out-dir " + (dir / "thumbs").string(),
+      "play " + scene + " -o " + (dir / "f%d.png").string() + " --frames 1",
+      "bench --counts 64 --methods reference --repeats 1 --csv " + (dir / "b.csv").string(),
+  };
+  for (const std::string& command : commands) {
+    const ProcessResult r = manylight(command + " --size " + size);
+    EXPECT_EQ(r.exitCode, 1) << command;
+    EXPECT_EQ(r.err, expected) << command;
+    EXPECT_TRUE(fs::is_empty(dir)) << command << ": an output was written";
+  }
+}
+
+// A scene whose camera looks away from its one box: every pixel is background, which the
+// reference's lighting passes discard at once, so its render is fast whatever lights ×
+// pixels.
+std::string lookingAway() {
+  GltfBuilder b;
+  b.addBox({0, 0, 0}, {1, 1, 1}, b.addMaterial({}));
+  b.addPerspectiveCamera({0, 0, -20}, {0, 0, -40}, 0.8f);
+  const fs::path path = testFolder() / "away.glb";
+  b.write(path.string());
+  return path.string();
+}
+
+// `count` point lights as a light list (read about five times faster than glTF nodes).
+std::string lightList(int count) {
+  std::ostringstream csv;
+  csv << "x,y,z,r,g,b,brightness\n";
+  for (int i = 0; i < count; ++i)
+    csv << i % 16 << "," << i / 16 % 16 << "," << i / 256 << ",255,200,100,1\n";
+  return writeText("lights.csv", csv.str());
+}
+
+TEST(CliOptions, ADefaultReferenceRenderOfManyLightsSaysHowLongItTakes) {
+  // 65,536 lights × 320×240 pixels = 5.0e9 light evaluations, past the 2^32 of the note.
+  const std::string scene = lookingAway();
+  const std::string out = (testFolder() / "x.png").string();
+  const std::string render =
+      "render " + scene + " --lights " + lightList(65536) + " -o " + out + " --size 320x240";
+  const ProcessResult bare = manylight(render);
+  ASSERT_EQ(bare.exitCode, 0) << bare.err;
+  EXPECT_EQ(bare.err, "manylight: " + slowReferenceNote(scene, 65536, 320, 240) + "\n");
+  EXPECT_NE(bare.err.find(": 65536 lights × 320×240 pixels with the reference method (every "
+                          "light at every pixel) will take up to about 13 s"),
+            std::string::npos)
+      << bare.err;
+  // Asked for by name, or with no lighting pass: nothing to say.
+  for (const char* args : {" --method reference", " --aov normal"}) {
+    const ProcessResult r = manylight(render + args);
+    EXPECT_EQ(r.exitCode, 0) << args << ": " << r.err;
+    EXPECT_EQ(r.err, "") << args;
+  }
+}
+
+}  // namespace
+}  // namespace manylight::testing
