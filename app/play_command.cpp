@@ -142,6 +142,8 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         {"lights", out.lightCount},
         {"baked_trees", baked.hasTrees},
         {"frames", out.framesRendered},
+        {"exposure_ev", display.exposure},
+        {"tone_map", toneMapName(display.toneMap)},
         {"camera_animation", out.animated},
         {"load_ms", loadMs},
         {"bake_ms", out.bakeMs},

@@ -2,6 +2,7 @@
 // and that EXR stays linear radiance.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "render/image.h"
@@ -70,6 +71,32 @@ TEST(Display, BadExposuresAndToneMapsAreUsageErrors) {
     const ProcessResult r = manylight("render " + scene + " -o " + out + " " + bad);
     EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
     EXPECT_FALSE(fs::exists(out)) << bad;
+  }
+}
+
+// A turntable with automatic exposure uses one EV, the first frame's, for every frame: the
+// same frames come out with that EV given explicitly.
+TEST(Display, PlaybackFixesAutomaticExposureFromTheFirstFrame) {
+  const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
+  const fs::path dir = testFolder();
+  const std::string stats = (dir / "play.json").string();
+  const std::string common = " --frames 3 --orbit 90 --size 48x32 --method reference";
+  ASSERT_EQ(manylight("play " + scene + " -o " + (dir / "auto" / "f%d.png").string() + common +
+                      " --stats " + stats)
+                .exitCode,
+            0);
+  const auto s = nlohmann::json::parse(readFile(stats));
+  const double ev = s["exposure_ev"];
+  EXPECT_NE(ev, 0.0);
+  char fixed[64];
+  std::snprintf(fixed, sizeof fixed, " --exposure %.9g", ev);
+  ASSERT_EQ(
+      manylight("play " + scene + " -o " + (dir / "fixed" / "f%d.png").string() + common + fixed)
+          .exitCode,
+      0);
+  for (int f = 0; f < 3; ++f) {
+    const std::string name = "f" + std::to_string(f) + ".png";
+    EXPECT_EQ(readFile(dir / "auto" / name), readFile(dir / "fixed" / name)) << name;
   }
 }
 
