@@ -8,11 +8,10 @@
 using namespace manylight;
 using namespace manylight::cli;
 
-int main(int argc, char** argv) {
-  const auto processStart = Clock::now();
-  CLI::App app{"manylight: headless OpenGL renderer for glTF scenes with many lights"};
-  app.require_subcommand(1);
-  RenderArgs r;
+namespace {
+
+// The render subcommand's arguments and options, parsed into `r`.
+CLI::App* addRenderCommand(CLI::App& app, RenderArgs& r) {
   CLI::App* render = app.add_subcommand("render", "Render glTF scenes (.gltf or .glb) to images");
   render
       ->add_option(
@@ -64,7 +63,11 @@ int main(int argc, char** argv) {
   render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
   render->add_flag("-v,--verbose", r.verbose,
                    "Say which context was chosen and how long things took");
-  PlayArgs p;
+  return render;
+}
+
+// The play subcommand's arguments and options, parsed into `p`.
+CLI::App* addPlayCommand(CLI::App& app, PlayArgs& p) {
   CLI::App* playCmd = app.add_subcommand("play",
                                          "Play a scene or baked scene: its camera animation, or a "
                                          "turntable orbit; one context, only the "
@@ -111,6 +114,19 @@ int main(int argc, char** argv) {
                     "render does, instead of keeping cuts per cell of the scene from frame to "
                     "frame");
   playCmd->add_flag("-v,--verbose", p.verbose, "Say which context was chosen and the frame rate");
+  return playCmd;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const auto processStart = Clock::now();
+  CLI::App app{"manylight: headless OpenGL renderer for glTF scenes with many lights"};
+  app.require_subcommand(1);
+  RenderArgs r;
+  CLI::App* render = addRenderCommand(app, r);
+  PlayArgs p;
+  CLI::App* playCmd = addPlayCommand(app, p);
   BakeArgs b;
   CLI::App* bake = app.add_subcommand("bake",
                                       "Bake a glTF scene (and a light list) into one file that "

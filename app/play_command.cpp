@@ -51,6 +51,53 @@ bool frameName(const std::string& pattern, int frame, std::string* name) {
 std::atomic<bool> gInterrupted{false};
 extern "C" void onInterrupt(int) { gInterrupted = true; }
 
+// Where played frames go: files named by the -o pattern, or raw RGBA8 on stdout, through the
+// display transform, whose automatic exposure is fixed from the first frame so a playback
+// does not pump (EXR files stay linear: an explicit EV only, no tone map).
+class FrameSink {
+ public:
+  explicit FrameSink(const PlayArgs& a)
+      : a_(a),
+        toStdout_(a.output == "-"),
+        exposure_(parseExposure(a.exposure)),
+        toneMap_(parseToneMap(a.toneMap)) {
+    const std::string ext = toStdout_ ? "" : std::filesystem::path(a.output).extension().string();
+    linear_ = ext == ".exr" || ext == ".EXR";
+  }
+
+  // Writes frame `frame`; false when stdout was closed.
+  bool write(int frame, const Image& image) {
+    if (frame == 0) {
+      display_.exposure = exposure_ ? *exposure_ : linear_ ? 0.0f : autoExposure(image);
+      display_.toneMap = linear_ ? ToneMap::None : toneMap_;
+    }
+    if (!toStdout_) {
+      std::string name;
+      frameName(a_.output, frame, &name);
+      writeImage(image, name, display_);
+      return true;
+    }
+    codes_ = displayCodes(image, display_);
+    if (std::fwrite(codes_.data(), 1, codes_.size(), stdout) != codes_.size() ||
+        std::fflush(stdout) != 0) {
+      closed_ = true;
+      return false;
+    }
+    return true;
+  }
+
+  const Display& display() const { return display_; }
+  bool closed() const { return closed_; }
+
+ private:
+  const PlayArgs& a_;
+  bool toStdout_, linear_ = false, closed_ = false;
+  std::optional<float> exposure_;
+  ToneMap toneMap_;
+  Display display_;
+  std::vector<std::uint8_t> codes_;
+};
+
 }  // namespace
 
 int runPlay(const PlayArgs& a, Clock::time_point processStart) {
@@ -71,10 +118,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   }
   r.camera = a.camera;
   r.rigAmbient = true;
-  const std::optional<float> exposure = parseExposure(a.exposure);
-  const ToneMap toneMap = parseToneMap(a.toneMap);
-  const std::string ext = toStdout ? "" : std::filesystem::path(a.output).extension().string();
-  const bool linearOutput = ext == ".exr" || ext == ".EXR";
+  FrameSink sink(a);
   r.method = a.lighting.parsed();
   r.lightcuts = a.lighting.lightcuts();
   r.lightcuts.trees = a.input.trees();
@@ -97,31 +141,12 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
   std::signal(SIGPIPE, SIG_IGN);  // a closed pipe shows as a failed write, and stops the playback
-  bool outputClosed = false;
-  std::vector<std::uint8_t> codes;
-  Display display;
   Progress progress(a.frames > 0 ? a.frames : 0);
   const auto playStart = Clock::now();
   const PlaybackOutcome out = play(
       baked.scene, request,
       [&](int frame, const Image& image, const FrameStats&) {
-        // Automatic exposure is fixed from the first frame, so a playback does not pump.
-        if (frame == 0) {
-          display.exposure = exposure ? *exposure : linearOutput ? 0.0f : autoExposure(image);
-          display.toneMap = linearOutput ? ToneMap::None : toneMap;
-        }
-        if (toStdout) {
-          codes = displayCodes(image, display);
-          if (std::fwrite(codes.data(), 1, codes.size(), stdout) != codes.size() ||
-              std::fflush(stdout) != 0) {
-            outputClosed = true;
-            return false;
-          }
-        } else {
-          std::string name;
-          frameName(a.output, frame, &name);
-          writeImage(image, name, display);
-        }
+        if (!sink.write(frame, image)) return false;
         progress.step("frame " + std::to_string(frame));
         return true;
       },
@@ -142,8 +167,8 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         {"lights", out.lightCount},
         {"baked_trees", baked.hasTrees},
         {"frames", out.framesRendered},
-        {"exposure_ev", display.exposure},
-        {"tone_map", toneMapName(display.toneMap)},
+        {"exposure_ev", sink.display().exposure},
+        {"tone_map", toneMapName(sink.display().toneMap)},
         {"camera_animation", out.animated},
         {"load_ms", loadMs},
         {"bake_ms", out.bakeMs},
@@ -151,7 +176,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         {"render_fps", renderSum > 0.0 ? 1000.0 * out.framesRendered / renderSum : 0.0},
         {"wall_fps", wallMs > 0.0 ? 1000.0 * out.framesRendered / wallMs : 0.0},
         {"interrupted", gInterrupted.load()},
-        {"output_closed", outputClosed},
+        {"output_closed", sink.closed()},
         {"total_ms", msSince(processStart)}};
     if (r.method != Method::Reference) {
       stats["frame_cut_ms"] = out.cutMs;
@@ -164,7 +189,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
     std::cerr << "manylight: interrupted after " << out.framesRendered << " frames\n";
     return kExitInterrupted;
   }
-  if (outputClosed)
+  if (sink.closed())
     std::cerr << "manylight: output closed after " << out.framesRendered - 1 << " frames\n";
   if (a.verbose) {
     std::cerr << "manylight: " << out.framesRendered << " frames, "
