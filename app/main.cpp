@@ -10,6 +10,14 @@ using namespace manylight::cli;
 
 namespace {
 
+// --camera: a glTF camera index, never negative (the default, −1, means "the first").
+const CLI::Validator kCameraIndex(
+    [](std::string& text) {
+      return !text.empty() && text[0] != '-' ? std::string()
+                                             : "expected a camera index >= 0, got '" + text + "'";
+    },
+    "INDEX");
+
 // The render subcommand's arguments and options, parsed into `r`.
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& r) {
   CLI::App* render = app.add_subcommand("render", "Render glTF scenes (.gltf or .glb) to images");
@@ -32,9 +40,11 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& r) {
       "--out-dir: I/N renders scenes I, I+N, I+2N, ... (0 <= I < N) of the list, to spread a batch "
       "over machines");
   render->add_option("--size", r.size, "Image size WxH")->capture_default_str();
-  render->add_option("--camera", r.camera,
-                     "Index of the glTF camera to use (default: the first; with none, frame the "
-                     "scene's bounds from a 3/4 view)");
+  render
+      ->add_option("--camera", r.camera,
+                   "Index of the glTF camera to use (default: the first; with none, frame the "
+                   "scene's bounds from a 3/4 view)")
+      ->check(kCameraIndex);
   addMethodOptions(render, r.lighting);
   render
       ->add_option("--backend", r.backend,
@@ -94,9 +104,11 @@ CLI::App* addPlayCommand(CLI::App& app, PlayArgs& p) {
                    "all frames")
       ->capture_default_str();
   playCmd->add_option("--size", p.size, "Frame size WxH")->capture_default_str();
-  playCmd->add_option("--camera", p.camera,
-                      "Index of the glTF camera the orbit starts from (default: the first; "
-                      "with none, the thumbnail framing)");
+  playCmd
+      ->add_option("--camera", p.camera,
+                   "Index of the glTF camera the orbit starts from (default: the first; "
+                   "with none, the thumbnail framing)")
+      ->check(kCameraIndex);
   addMethodOptions(playCmd, p.lighting);
   playCmd
       ->add_option("--exposure", p.exposure,

@@ -284,6 +284,8 @@ TEST(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(manylight("render x.gltf -o y.png --max-cut 0").exitCode, 2);
   EXPECT_EQ(manylight("render x.gltf -o y.png --size 0x5").exitCode, 2);
   EXPECT_EQ(manylight("render x.gltf -o y.png --frobnicate").exitCode, 2);
+  EXPECT_EQ(manylight("render x.gltf -o y.png --camera -3").exitCode, 2);
+  EXPECT_EQ(manylight("play x.gltf -o 'f%d.png' --camera -1").exitCode, 2);
   EXPECT_EQ(manylight("--help").exitCode, 0);
 }
 
