@@ -5,7 +5,8 @@
 # Neutral), in one contact sheet with their names. Look at it before and after any change to
 # shading, loading or output.
 # Usage: bench/gallery.sh [OUT.png [render options...]]   (default docs/gallery.png; run from
-# the repository root after a build)
+# the repository root after a build). With GALLERY_RENDERS=DIR each scene's render is kept
+# there too (DIR/NAME.png), for bench/clipped_black.py DIR.
 set -euo pipefail
 out="${1:-docs/gallery.png}"
 shift || true
@@ -35,6 +36,10 @@ for f in "${files[@]}"; do
   oiiotool "$work/r$i.png" --pattern constant:color=0.2,0.2,0.23,1 "$tile" 4 --over \
     --text:x=4:y=145:size=11:color=0.9,0.9,0.9,1:font="$font" "$label" -o "$work/t$(printf %03d $i).png"
   tiles+=("$work/t$(printf %03d $i).png")
+  if [ -n "${GALLERY_RENDERS:-}" ]; then
+    mkdir -p "$GALLERY_RENDERS"
+    cp "$work/r$i.png" "$GALLERY_RENDERS/$(printf %s "$name" | tr '/' '_' | sed 's/\.[^.]*$//').png"
+  fi
 done
 columns=6
 rows=$(((${#tiles[@]} + columns - 1) / columns))

@@ -14,7 +14,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   clang libclang-rt-14-dev clang-format
-  python3 gnuplot-nox fonts-dejavu-core
+  python3 python3-numpy python3-openimageio gnuplot-nox fonts-dejavu-core
 )
 case "${1:-}" in
   --peers) packages+=(f3d xvfb xauth) ;;
