@@ -4,8 +4,7 @@
 // with std::min and std::max's semantics ((b < a) ? b : a and (a < b) ? b : a). The bounds
 // are those glsl/lighting_lightcuts.frag's nodeBounds puts on a node at one point, over a
 // region of shading points instead (a box of positions, a cone of normals). Every branch is
-// taken by every lane and its results selected. (Until session 12 the CPU cut took the same
-// steps one node at a time; the images were the same bit for bit.)
+// taken by every lane and its results selected, so eight lanes and one give the same bits.
 // No include guard: included once per lane type.
 
 // libstdc++'s std::clamp: (v < lo) ? lo : (hi < v) ? hi : v.
