@@ -1,4 +1,4 @@
-// `manylight bench`: the speed/accuracy sweep and the stability suite (render/sweep.h),
+// `manylight bench`: the speed/accuracy sweep and the stability suite (tools/sweep.h),
 // written as CSV and JSON after every case, so an interrupted run keeps what it measured.
 #include <unistd.h>
 
@@ -14,11 +14,11 @@
 #include <variant>
 
 #include "app/commands.h"
-#include "render/progress.h"
-#include "render/sweep.h"
-#include "scene/output_file.h"
-#include "scene/scene_builder.h"
-#include "scene/text_table.h"
+#include "base/output_file.h"
+#include "base/text_table.h"
+#include "generators/scene_builder.h"
+#include "tools/progress.h"
+#include "tools/sweep.h"
 
 namespace manylight::cli {
 namespace {
@@ -171,7 +171,7 @@ nlohmann::json runJson(const RunRecord& r) {
   return j;
 }
 
-// The scene the sweep lights: the user's, or the generated room (scene/scene_builder.h).
+// The scene the sweep lights: the user's, or the generated room (generators/scene_builder.h).
 Scene sweepScene(const std::string& path) {
   if (!path.empty()) return loadGltf(path);
   RoomOptions o;

@@ -14,11 +14,11 @@
 #include "bake/baked_file.h"
 #include "gl/context.h"
 #include "gl/limits.h"
-#include "render/colour_calibration.h"
-#include "render/image.h"
+#include "image/image.h"
 #include "render/lightcuts_method.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/colour_calibration.h"
 
 namespace manylight::cli {
 
@@ -44,7 +44,7 @@ double finiteNumber(const std::string& option, const std::string& text);
 void requireFiniteNumbers(CLI::App& app);
 // "R,G,B" of finite numbers → a colour; throws CLI::ValidationError.
 glm::vec3 parseRgb(const std::string& s);
-// --exposure: "auto" → nothing (render/display.h's automatic exposure), else a finite number
+// --exposure: "auto" → nothing (image/display.h's automatic exposure), else a finite number
 // of EV; throws CLI::ValidationError.
 std::optional<float> parseExposure(const std::string& s);
 // The most pixels a side of --size may have before the context's own limits are asked.

@@ -8,9 +8,9 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "base/output_file.h"
 #include "render/playback.h"
-#include "render/progress.h"
-#include "scene/output_file.h"
+#include "tools/progress.h"
 
 namespace manylight::cli {
 namespace {

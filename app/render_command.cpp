@@ -4,10 +4,10 @@
 #include <iostream>
 
 #include "app/commands.h"
-#include "render/progress.h"
+#include "base/output_file.h"
 #include "render/render_job.h"
 #include "scene/image_io.h"
-#include "scene/output_file.h"
+#include "tools/progress.h"
 
 namespace manylight::cli {
 namespace {

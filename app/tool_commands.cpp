@@ -3,8 +3,8 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "base/output_file.h"
 #include "scene/light_list.h"
-#include "scene/output_file.h"
 
 namespace manylight::cli {
 

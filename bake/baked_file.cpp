@@ -13,7 +13,7 @@
 #include <string_view>
 
 #include "bake/baked_sections.h"
-#include "scene/output_file.h"
+#include "base/output_file.h"
 
 namespace manylight {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scene/text_table.h"
+#include "base/text_table.h"
 
 namespace manylight {
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "bake/baked_file.h"
-#include "scene/scene_builder.h"
+#include "generators/scene_builder.h"
 
 namespace {
 

@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <map>
 
+#include "generators/scene_builder.h"
 #include "gl/context.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
-#include "scene/scene_builder.h"
 
 namespace {
 

@@ -1,14 +1,14 @@
-// Writes the generated room scene (scene/scene_builder.h) with a chosen light count: the
+// Writes the generated room scene (generators/scene_builder.h) with a chosen light count: the
 // bundled sample (scenes/sample.gltf) and the benchmarks' inputs come from here. With
-// --layout NAME the lights are those of the sweep's layout (scene/light_layouts.h), so peers
+// --layout NAME the lights are those of the sweep's layout (generators/light_layouts.h), so peers
 // (bench/peers.sh) render exactly what `manylight bench` renders.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
-#include "scene/error.h"
-#include "scene/light_layouts.h"
-#include "scene/scene_builder.h"
+#include "base/error.h"
+#include "generators/light_layouts.h"
+#include "generators/scene_builder.h"
 
 int main(int argc, char** argv) {
   if (argc < 3) {
@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
       if (a == "--specular") o.specular = true;
       if (a == "--untextured") o.textured = false;
       if (a == "--layout" && i + 1 < argc) {
-        // The sweep's seed (render/sweep.h) unless one is given.
+        // The sweep's seed (tools/sweep.h) unless one is given.
         const std::uint32_t seed = argc > 3 && argv[3][0] != '-' ? o.seed : 7;
         o.lights =
             manylight::layoutLights(manylight::parseLightLayout(argv[++i]), o.lightCount, seed);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Peers, whole process against whole process: Debian's f3d and manylight render the sweep's
-# room (uniform layout, scene/light_layouts.h) to a PNG at 640x480 with Mesa's shader cache
+# room (uniform layout, generators/light_layouts.h) to a PNG at 640x480 with Mesa's shader cache
 # off, as in a fresh container. f3d 1.3.1 needs an X display (without one it crashes), so it
 # runs on Xvfb when there is no DISPLAY. Writes CSV: tool,lights,seconds,result.
 # Usage: bench/peers.sh OUT.csv [COUNTS]   (default counts "64 512 4096 65536"; run from the

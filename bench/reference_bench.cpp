@@ -4,10 +4,10 @@
 
 #include <filesystem>
 
+#include "generators/scene_builder.h"
 #include "gl/context.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
-#include "scene/scene_builder.h"
 
 namespace {
 

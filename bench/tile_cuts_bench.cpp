@@ -10,8 +10,8 @@
 
 #include "bake/light_tree.h"
 #include "bake/light_tree_pack.h"
+#include "generators/light_layouts.h"
 #include "render/tile_cuts.h"
-#include "scene/light_layouts.h"
 
 namespace {
 

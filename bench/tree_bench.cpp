@@ -4,7 +4,7 @@
 
 #include "bake/light_tree.h"
 #include "bake/light_tree_pack.h"
-#include "scene/scene_builder.h"
+#include "generators/scene_builder.h"
 
 namespace {
 

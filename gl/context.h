@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scene/error.h"
+#include "base/error.h"
 
 namespace manylight::gl {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "render/image.h"
+#include "image/image.h"
 
 namespace manylight {
 

@@ -6,7 +6,7 @@
 #include "bake/light_texture_layout.h"
 #include "gl/context.h"
 #include "gl/texture_buffer.h"
-#include "render/image.h"
+#include "image/image.h"
 #include "scene/shading_model.h"
 
 namespace manylight {

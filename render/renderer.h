@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "image/image.h"
 #include "render/aov.h"
 #include "render/blend_pass.h"
 #include "render/gbuffer.h"
 #include "render/geometry_pass.h"
 #include "render/gpu_scene.h"
-#include "render/image.h"
 #include "render/lightcuts_method.h"
 #include "render/reference_method.h"
 #include "scene/camera.h"

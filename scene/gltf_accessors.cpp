@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-#include "scene/error.h"
+#include "base/error.h"
 
 namespace manylight::gltf {
 namespace {

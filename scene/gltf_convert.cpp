@@ -5,7 +5,7 @@
 #include <cmath>
 #include <type_traits>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/gltf_attributes.h"
 #include "scene/half_edge.h"
 #include "scene/tangents.h"

@@ -11,7 +11,7 @@
 
 #include <map>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/gltf_accessors.h"
 
 namespace manylight::gltf {

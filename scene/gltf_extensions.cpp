@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "scene/error.h"
+#include "base/error.h"
 
 namespace manylight::gltf {
 namespace {

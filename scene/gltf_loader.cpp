@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "base/error.h"
 #include "scene/asset_files.h"
 #include "scene/camera_animation.h"
-#include "scene/error.h"
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_convert.h"
 #include "scene/gltf_extensions.h"

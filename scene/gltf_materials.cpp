@@ -6,7 +6,7 @@
 #include <cmath>
 #include <iterator>
 
-#include "scene/error.h"
+#include "base/error.h"
 
 namespace manylight::gltf {
 namespace {

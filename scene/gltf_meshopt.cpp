@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "scene/error.h"
+#include "base/error.h"
 
 namespace manylight::gltf {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/image_io.h"
 
 namespace manylight {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/error.h"
+#include "base/error.h"
 
 namespace manylight {
 namespace {

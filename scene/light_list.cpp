@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "scene/error.h"
+#include "base/error.h"
+#include "base/text_table.h"
 #include "scene/srgb.h"
-#include "scene/text_table.h"
 
 namespace manylight {
 namespace {

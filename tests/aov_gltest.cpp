@@ -5,11 +5,11 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "generators/scene_builder.h"
+#include "image/image.h"
 #include "render/aov.h"
-#include "render/image.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
-#include "scene/scene_builder.h"
 #include "scene/srgb.h"
 #include "tests/cli_support.h"
 #include "tests/test_support.h"

@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/sweep.h"
 #include "scene/gltf_loader.h"
 #include "tests/cli_support.h"
+#include "tools/sweep.h"
 
 namespace manylight::testing {
 namespace {

@@ -1,14 +1,14 @@
 // The benchmark sweep's inputs and figures without GL: the light layouts and the image
-// error measures (render/image_errors.h).
+// error measures (image/image_errors.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numeric>
 
-#include "render/image_errors.h"
+#include "base/error.h"
+#include "generators/light_layouts.h"
+#include "image/image_errors.h"
 #include "render/render_job.h"
-#include "scene/error.h"
-#include "scene/light_layouts.h"
 
 namespace manylight::testing {
 namespace {

@@ -6,13 +6,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "render/colour_calibration.h"
-#include "render/image.h"
+#include "image/image.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
 #include "tests/cli_support.h"
 #include "tests/oracle.h"
 #include "tests/test_support.h"
+#include "tools/colour_calibration.h"
 
 namespace manylight::testing {
 namespace {

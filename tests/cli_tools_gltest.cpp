@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "render/image.h"
+#include "image/image.h"
 #include "tests/cli_support.h"
 
 namespace manylight::testing {

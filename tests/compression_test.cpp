@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <functional>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/gltf_loader.h"
 #include "scene/gltf_meshopt.h"
 #include "tests/compressed_scenes.h"

@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "base/error.h"
 #include "render/render_job.h"
-#include "scene/error.h"
 #include "scene/gltf_loader.h"
 #include "tests/test_support.h"
 

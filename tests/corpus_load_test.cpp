@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/gltf_loader.h"
 #include "tests/test_support.h"
 

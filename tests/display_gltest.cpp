@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "render/image.h"
-#include "scene/scene_builder.h"
+#include "generators/scene_builder.h"
+#include "image/image.h"
 #include "tests/cli_support.h"
 #include "tests/test_support.h"
 

@@ -1,11 +1,11 @@
-// The display transform of PNG output (render/display.h): tone maps and automatic exposure.
-#include "render/display.h"
+// The display transform of PNG output (image/display.h): tone maps and automatic exposure.
+#include "image/display.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "render/image.h"
+#include "image/image.h"
 
 namespace manylight::testing {
 namespace {

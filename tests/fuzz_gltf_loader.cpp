@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/gltf_loader.h"
 
 namespace {

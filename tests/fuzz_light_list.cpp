@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/light_list.h"
 
 namespace {

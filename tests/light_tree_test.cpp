@@ -10,7 +10,7 @@
 
 #include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
-#include "scene/scene_builder.h"
+#include "generators/scene_builder.h"
 
 namespace manylight {
 namespace {

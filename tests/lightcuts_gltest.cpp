@@ -5,10 +5,10 @@
 #include <cmath>
 #include <iostream>
 
+#include "generators/light_layouts.h"
 #include "render/playback.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
-#include "scene/light_layouts.h"
 #include "tests/test_support.h"
 
 namespace manylight::testing {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <fstream>
 
+#include "generators/scene_builder.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
-#include "scene/scene_builder.h"
 #include "tests/cli_support.h"
 #include "tests/oracle_compare.h"
 #include "tests/test_support.h"

@@ -5,9 +5,9 @@
 
 #include <fstream>
 
-#include "scene/error.h"
+#include "base/error.h"
+#include "generators/scene_builder.h"
 #include "scene/gltf_loader.h"
-#include "scene/scene_builder.h"
 #include "tests/test_support.h"
 
 namespace manylight::testing {

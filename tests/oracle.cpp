@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "render/image.h"
+#include "image/image.h"
 #include "scene/shading_model.h"
 
 namespace manylight::testing {

@@ -5,7 +5,7 @@
 // GPU's reference method is held to.
 #include <vector>
 
-#include "render/image.h"
+#include "image/image.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/gltf_loader.h"
 #include "tests/test_support.h"
 

@@ -5,7 +5,7 @@
 
 #include "bake/light_pack.h"
 #include "bake/light_texture_layout.h"
-#include "render/image.h"
+#include "image/image.h"
 #include "scene/shading_model.h"
 
 namespace manylight {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "generators/scene_builder.h"
 #include "gl/context.h"
-#include "scene/scene_builder.h"
 
 namespace manylight::testing {
 

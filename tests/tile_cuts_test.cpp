@@ -15,10 +15,10 @@
 #include "bake/light_tree.h"
 #include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
+#include "generators/light_layouts.h"
 #include "render/cell_cuts.h"
 #include "render/cut_heap.h"
 #include "render/far_field.h"
-#include "scene/light_layouts.h"
 #include "scene/shading_model.h"
 #include "tests/far_field_support.h"
 

@@ -1,9 +1,9 @@
-#include "scene/light_layouts.h"
+#include "generators/light_layouts.h"
 
 #include <cmath>
 #include <random>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/srgb.h"
 
 namespace manylight {

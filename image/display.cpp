@@ -1,10 +1,10 @@
-#include "render/display.h"
+#include "image/display.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "render/image.h"
-#include "scene/error.h"
+#include "base/error.h"
+#include "image/image.h"
 
 namespace manylight {
 namespace {

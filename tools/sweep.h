@@ -1,15 +1,15 @@
 #pragma once
 // The benchmark sweep and the stability suite behind `manylight bench` (bench/sweep.sh):
-// method variants render generated light layouts (scene/light_layouts.h) in one scene,
+// method variants render generated light layouts (generators/light_layouts.h) in one scene,
 // timed, and compared with the reference method on the same view.
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "render/image_errors.h"
+#include "generators/light_layouts.h"
+#include "image/image_errors.h"
 #include "render/renderer.h"
-#include "scene/light_layouts.h"
 
 namespace manylight {
 

@@ -87,7 +87,7 @@ struct RoomOptions {
   bool withRange = true;
   bool textured = true;
   bool specular = false;
-  // When not empty: these lights (scene/light_layouts.h), and none generated.
+  // When not empty: these lights (generators/light_layouts.h), and none generated.
   std::vector<Light> lights;
 };
 void writeRoomScene(const std::string& path, const RoomOptions& options);

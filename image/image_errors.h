@@ -3,7 +3,7 @@
 // of the benchmark sweep and the stability suite (bench/, docs/stability.md).
 #include <vector>
 
-#include "render/image.h"
+#include "image/image.h"
 
 namespace manylight {
 

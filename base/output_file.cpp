@@ -1,10 +1,10 @@
-#include "scene/output_file.h"
+#include "base/output_file.h"
 
 #include <unistd.h>
 
 #include <fstream>
 
-#include "scene/error.h"
+#include "base/error.h"
 
 namespace manylight {
 

@@ -1,4 +1,4 @@
-#include "scene/text_table.h"
+#include "base/text_table.h"
 
 #include <cerrno>
 #include <charconv>
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "scene/error.h"
+#include "base/error.h"
 
 namespace manylight {
 

@@ -1,6 +1,6 @@
 #include <random>
 
-#include "scene/scene_builder.h"
+#include "generators/scene_builder.h"
 
 namespace manylight {
 

@@ -1,4 +1,4 @@
-#include "render/colour_calibration.h"
+#include "tools/colour_calibration.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-#include "render/sweep.h"
+#include "tools/sweep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <map>
 #include <memory>
 
+#include "base/error.h"
 #include "gl/context.h"
-#include "scene/error.h"
 
 namespace manylight {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "render/display.h"
-#include "scene/error.h"
+#include "base/error.h"
+#include "image/display.h"
 #include "scene/image_io_module.h"  // ImageComparison
 #include "scene/srgb.h"             // the PNG encoding
 

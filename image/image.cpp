@@ -1,11 +1,11 @@
-#include "render/image.h"
+#include "image/image.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include "base/output_file.h"
 #include "scene/image_io.h"
-#include "scene/output_file.h"
 
 namespace manylight {
 

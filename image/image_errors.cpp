@@ -1,4 +1,4 @@
-#include "render/image_errors.h"
+#include "image/image_errors.h"
 
 #include <algorithm>
 #include <cmath>

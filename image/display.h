@@ -1,6 +1,6 @@
 #pragma once
 // The display transform for people: PNG output is exposed, tone-mapped, then sRGB-encoded
-// (render/image.cpp); EXR output stays linear radiance, exposed only. With ToneMap::None and
+// (image/image.cpp); EXR output stays linear radiance, exposed only. With ToneMap::None and
 // exposure 0 a PNG is the linear radiance clamped to [0, 1] and sRGB-encoded, exactly.
 #include <cstdint>
 #include <glm/glm.hpp>

@@ -1,4 +1,4 @@
-#include "scene/scene_builder.h"
+#include "generators/scene_builder.h"
 
 #include <tiny_gltf.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <fstream>
 #include <glm/gtc/quaternion.hpp>
 
-#include "scene/error.h"
+#include "base/error.h"
 #include "scene/image_io.h"
 
 namespace manylight {

@@ -1,4 +1,4 @@
-#include "render/progress.h"
+#include "tools/progress.h"
 
 #include <unistd.h>
 
