@@ -26,7 +26,7 @@ struct LoadedScene {
 
 // Starts reading `path` on a worker thread; get() gives the scene or rethrows its Error.
 // Reading needs no GL, so the first scene (whose textures bring in OpenImageIO's libraries,
-// about 0.4 s of dynamic linking) is read while the context opens and the driver compiles
+// hundreds of them to link) is read while the context opens and the driver compiles
 // the G-buffer program, and each next one of a batch while the one before renders.
 std::future<LoadedScene> startLoading(const RenderArgs& a, const std::string& path) {
   return std::async(std::launch::async, [&a, path] {
@@ -188,8 +188,8 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   // A shard past the end of a short list has no scene.
   std::future<LoadedScene> next;
   if (!jobs.empty()) next = startLoading(a, jobs[0].scene);
-  // A scene that fails does so within a millisecond or two (a missing file, bad JSON) and
-  // then has no use for the compiled code; a scene that reads takes far longer than 10 ms.
+  // A scene that fails does so at once (a missing file, bad JSON) and then has no use for
+  // the compiled code; one still reading after a 10 ms wait is a scene that will render.
   if (next.valid() && next.wait_for(std::chrono::milliseconds(10)) != std::future_status::ready) {
     warmUpGeometryPass(request.aov);
   }

@@ -33,7 +33,7 @@
 // within Θ of the axis.
 //
 // Memory per node: 40 bytes (directional, point) and 56 bytes (spot); with the intensity as
-// three floats they were 48 and 64.
+// three floats they would be 48 and 64.
 #include <cstdint>
 #include <cstring>
 

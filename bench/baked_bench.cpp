@@ -1,6 +1,6 @@
 // Loading a baked scene: 1,048,576 scattered lights (mixed point/spot/directional) with their
 // packed light trees, read back from a baked file (bake/baked_file.h): the whole read, the
-// checksum and every check of the format, nothing rebuilt. Target (issue 7): ≤ 1 s.
+// checksum and every check of the format, nothing rebuilt. Target: ≤ 1 s.
 // Run: build/bin/manylight_baked_bench
 #include <benchmark/benchmark.h>
 

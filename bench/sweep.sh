@@ -2,11 +2,11 @@
 # The one command behind docs/benchmarks.md, docs/stability.md and docs/charts/: the
 # speed/accuracy sweep and the stability suite (`manylight bench`), the peers when f3d is
 # installed (bench/peers.sh), then the charts and pages (bench/report.py, gnuplot).
-# Run from the repository root after the build (README.md, command 1):
-#   bench/sweep.sh            the sweep: 640x480, 4 layouts x 6 counts up to 1,048,576,
-#                             every method, ε and mode (about 2.5 hours on the 2-core machine):
-#                             what docs/ shows today
-#   bench/sweep.sh --quick    the same at 320x240 (about 1 hour)
+# Run from the repository root after the build (README.md, the first command):
+#   bench/sweep.sh            the full sweep: 640x480, 4 layouts x 6 counts up to 1,048,576,
+#                             every method, ε and mode (hours on a 2-core machine; see
+#                             docs/performance.md): what docs/ shows
+#   bench/sweep.sh --quick    the same at 320x240
 #   bench/sweep.sh --resume   go on with an interrupted sweep: finished cases are kept (the
 #                             same build's only: manylight refuses another build's results)
 #   bench/sweep.sh --report   only redraw the charts and pages from docs/results/

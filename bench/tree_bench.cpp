@@ -1,4 +1,4 @@
-// Light tree build time (bake/light_tree.h): the target is ≤ 5 s for 1,048,576
+// Light tree build time (bake/light_tree.h): the target is ≤ 5 s for 1,048,576
 // lights on the 2-core machine. Run: build/bin/manylight_tree_bench
 #include <benchmark/benchmark.h>
 

@@ -56,15 +56,15 @@ struct PreparedRender {
   FrameSettings settings;
 };
 
-// Light evaluations a second of the reference method on llvmpipe with 2 cores (README,
-// Measured, "reference throughput": 409–463 M/s with point lights, 323–482 M/s mixed).
+// Light evaluations a second of the reference method on llvmpipe with 2 cores: the
+// reference throughput of docs/performance.md, rounded.
 inline constexpr double kReferenceEvaluationsPerSecond = 4e8;
 // Light evaluations of a reference frame past which `render` says that lightcuts would be
 // faster, when the reference was its default and not asked for: 2^32, about 11 s at
 // kReferenceEvaluationsPerSecond.
 inline constexpr double kSlowReferenceEvaluations = 4294967296.0;
-// Lights from which lightcuts is faster than the reference (README, Benchmarks: at 64 lights
-// the reference wins, at 1,024 lightcuts is 2.0–2.8× faster in three layouts of four).
+// Lights from which lightcuts is faster than the reference (docs/performance.md, the sweep:
+// at 64 lights the two are close, at 1,024 lightcuts is faster in every layout).
 inline constexpr std::size_t kLightcutsFasterLights = 1024;
 
 // Seconds a reference frame of `lights` over width × height takes at

@@ -51,8 +51,8 @@ struct FrameStats {
 };
 
 // Renders one triangle with the default material at 8×8 and throws the image away:
-// llvmpipe builds a program's machine code at its first draw in each draw state (for the
-// G-buffer program about 0.2 s) and keeps it for the context's later draws in that state.
+// llvmpipe builds a program's machine code at its first draw in each draw state and keeps it
+// for the context's later draws in that state.
 // Called while another thread reads the scene, this takes that work off a render's
 // critical path for every untextured draw. (A textured draw's code depends on its
 // texture's size and sampler, which are not known before the scene is read.) Needs a

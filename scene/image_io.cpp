@@ -23,7 +23,7 @@ struct Loaded {
 // first, from the list the build wrote beside the module (cmake/ModuleLibraries.cmake).
 // glibc holds one lock for the whole of a dlopen call, and every dlsym waits on it: among
 // them those of LLVM's JIT, so llvmpipe, compiling shaders on another thread while a scene
-// loads, would stall for the 0.4 s the module's single dlopen takes. One library per call
+// loads, would stall for the whole of the module's single dlopen. One library per call
 // lets the two interleave, and each library's symbols are looked up in its own
 // dependencies only, a shorter search. A library that will not open is left to the
 // module's own dlopen, which names what is missing.

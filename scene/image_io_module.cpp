@@ -17,7 +17,7 @@ namespace {
 
 // libpng writes "libpng error: ..." to stderr before OpenImageIO's PNG reader reports the
 // same error (OpenImageIO's handler notes the message and returns, so libpng's default
-// handler prints it and unwinds): a corrupt PNG gave one to three such lines before
+// handler prints it and unwinds): a corrupt PNG gives one to three such lines before
 // manylight's own one-line error. While OpenImageIO works, stderr (the process's file
 // descriptor 2) goes to an anonymous file; when the last guard leaves, what was written
 // there meanwhile goes on to stderr without libpng's lines (OpenImageIO's errors come back

@@ -1,9 +1,9 @@
 #pragma once
 // The boundary between manylight and its image I/O module, libmanylight_imageio.so: the
 // only code that links OpenImageIO. OpenImageIO pulls in about 260 shared libraries whose
-// loading takes 0.4-0.6 s on this machine. In a module, that cost is paid only by
+// loading is most of a small render's start-up. In a module, that cost is paid only by
 // processes that read or write an image (not by --help, a bad command line or a rejected
-// scene: 0.05 s instead of 0.47 s), and those libraries stay out of the global symbol
+// scene), and those libraries stay out of the global symbol
 // scope that every lazily bound call of Mesa's LLVM searches.
 //
 // Both sides are built together by this project with one compiler and standard library,

@@ -48,7 +48,7 @@ TEST(Cli, PngIsWithinOneCodeOfTheOracle) {
   o.lightCount = 7;
   const std::string scene = roomScene(o);
   const fs::path out = testFolder() / "o.png";
-  // The linear radiance sRGB-encoded, as it was before the display transform.
+  // The linear radiance sRGB-encoded, with no exposure or tone map.
   ASSERT_EQ(manylight("render " + scene + " -o " + out.string() +
                       " --size 120x90 --tone-map none --exposure 0")
                 .exitCode,

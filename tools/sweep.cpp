@@ -50,8 +50,9 @@ FrameSettings variantSettings(const SweepVariant& v, const SweepCase& c, int def
   return fs;
 }
 
-// A reference frame costs about this many light evaluations per millisecond at least
-// (issue 2 measured 280-440 M/s): used only to pick the warm-up's share of rows.
+// A reference frame costs about this many light evaluations per millisecond at least (below
+// the reference throughput of docs/performance.md): used only to pick the warm-up's share
+// of rows.
 constexpr double kSlowestEvaluationsPerMs = 2.0e5;
 
 }  // namespace
@@ -115,8 +116,8 @@ double Sweep::floorMs() {
   const std::vector<Light> one = layoutLights(LightLayout::Uniform, 1, settings_.seed);
   Renderer renderer(scene_, one, settings_.width, settings_.height, Method::Reference);
   const View view = makeView(scene_.cameras[0], settings_.width, settings_.height);
-  // Frames this short take several frames to settle (16 ms falling to 10 ms at 320x240):
-  // warm up with three, and take the median of at least five.
+  // Frames this short take several frames to settle: warm up with three, and take the median
+  // of at least five.
   FrameStats stats;
   for (int i = 0; i < 3; ++i) renderer.render(view, {}, &stats);
   std::vector<double> ms;
