@@ -19,7 +19,7 @@ using testing::testFolder;
 
 glm::vec3 positionAt(const Camera& c, float t) { return glm::vec3(animatedCameraWorld(c, t)[3]); }
 
-TEST(CameraAnimation, TheLoaderReadsTheChainAndItsTracks) {
+TEST(Animation, TheLoaderReadsTheChainAndItsTracks) {
   const Scene s = loadGltf(animatedScene("linear"));
   ASSERT_EQ(s.cameras.size(), 1u);
   const Camera& c = s.cameras[0];
@@ -41,7 +41,7 @@ TEST(CameraAnimation, TheLoaderReadsTheChainAndItsTracks) {
   EXPECT_NEAR(glm::distance(glm::vec3(c.world[3]), glm::vec3(1, 0, 0)), 0.0f, 1e-5f);
 }
 
-TEST(CameraAnimation, CubicSplinesFollowHermiteCurves) {
+TEST(Animation, CubicSplinesFollowHermiteCurves) {
   Camera c;
   AnimatedNode n;
   AnimationTrack t;
@@ -62,7 +62,7 @@ TEST(CameraAnimation, CubicSplinesFollowHermiteCurves) {
   EXPECT_NEAR(positionAt(c, 0.5f).x, want, 1e-5f);
 }
 
-TEST(CameraAnimation, BrokenTracksAreRefused) {
+TEST(Animation, BrokenTracksAreRefused) {
   const std::string path = animatedScene("decreasing", "LINEAR", 3.0f);  // times 0, 3, 2
   try {
     loadGltf(path);
@@ -84,7 +84,7 @@ TEST(CameraAnimation, BrokenTracksAreRefused) {
   EXPECT_EQ(checkTrack(t), "3 values for 2 keys, expected 6");
 }
 
-TEST(CameraAnimation, BakedScenesKeepIt) {
+TEST(Animation, BakedScenesKeepIt) {
   const Scene s = loadGltf(animatedScene("baked"));
   const std::string path = (testFolder() / "animated.mlbake").string();
   writeBakedScene(path, bakeScene(s, {}));

@@ -35,7 +35,7 @@ Scene roomWithLights(int lights, bool specular = false) {
   return loadGltf(testing::roomScene(o, "baked-room-" + std::to_string(lights) + ".gltf"));
 }
 
-TEST(BakedFile, ReadsBackWhatWasBaked) {
+TEST(Baked, ReadsBackWhatWasBaked) {
   TreeOptions trees;
   trees.split = Split::LongestAxis;
   trees.nodeColour = NodeColourCoding::Fitted;
@@ -114,7 +114,7 @@ TEST(BakedFile, ReadsBackWhatWasBaked) {
   EXPECT_EQ(readBytes(again), readBytes(path));
 }
 
-TEST(BakedFile, ASceneWithoutLightsHasNoTrees) {
+TEST(Baked, ASceneWithoutLightsHasNoTrees) {
   const std::string path = (testFolder() / "dark.mlbake").string();
   Scene dark = roomWithLights(1);
   dark.lights.clear();
@@ -148,7 +148,7 @@ std::size_t sectionOffset(const std::string& file, const char (&tag)[5]) {
   return 0;
 }
 
-TEST(BakedFile, DamagedAndForeignFilesAreRefused) {
+TEST(Baked, DamagedAndForeignFilesAreRefused) {
   const std::string good = (testFolder() / "good.mlbake").string();
   writeBakedScene(good, bakeScene(roomWithLights(40), {}));
   const std::string bytes = readBytes(good);

@@ -21,7 +21,7 @@ const Scene& room() {
   return scene;
 }
 
-TEST(Sweep, ReferenceRowSubsetLightsExactlyItsRows) {
+TEST(Bench, SweepReferenceRowSubsetLightsExactlyItsRows) {
   context();
   const int w = 40, h = 50;
   const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 300, 7);
@@ -52,7 +52,7 @@ TEST(Sweep, ReferenceRowSubsetLightsExactlyItsRows) {
               rows[0] && !rows[2]);
 }
 
-TEST(Sweep, RecordsHoldTheTotalRuleAndTheReferenceIsExact) {
+TEST(Bench, SweepRecordsHoldTheTotalRuleAndTheReferenceIsExact) {
   context();
   SweepSettings s;
   s.width = 48;
@@ -85,7 +85,7 @@ TEST(Sweep, RecordsHoldTheTotalRuleAndTheReferenceIsExact) {
   EXPECT_EQ(records[2].variant.label(), "lightcuts-distance");
 }
 
-TEST(Sweep, SlowReferencesLightARowSubsetAndSaySo) {
+TEST(Bench, SweepSlowReferencesLightARowSubsetAndSaySo) {
   context();
   SweepSettings s;
   s.width = 48;
@@ -103,7 +103,7 @@ TEST(Sweep, SlowReferencesLightARowSubsetAndSaySo) {
   EXPECT_GT(records[1].errors.pixels, 0);
 }
 
-TEST(Cli, BenchWritesEveryRunAsCsvAndJson) {
+TEST(Bench, CliBenchWritesEveryRunAsCsvAndJson) {
   const fs::path dir = testFolder();
   const ProcessResult r = manylight(
       "bench --layouts uniform,street --counts 8,40 --methods reference,lightcuts --modes node "
@@ -149,7 +149,7 @@ TEST(Cli, BenchWritesEveryRunAsCsvAndJson) {
                              "run without --resume\n");
 }
 
-TEST(Cli, BenchRefusesBadRequestsInOneLine) {
+TEST(Bench, CliBenchRefusesBadRequestsInOneLine) {
   const std::string out = " --json " + (testFolder() / "x.json").string();
   struct Case {
     std::string args, message;
@@ -181,7 +181,7 @@ TEST(Cli, BenchRefusesBadRequestsInOneLine) {
   }
 }
 
-TEST(Cli, StabilitySuiteAndReportWriteThePages) {
+TEST(Bench, CliStabilitySuiteAndReportWriteThePages) {
   const fs::path dir = testFolder();
   const fs::path results = dir / "results", docs = dir / "docs";
   ProcessResult r = manylight(

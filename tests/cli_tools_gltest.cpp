@@ -11,7 +11,7 @@
 namespace manylight::testing {
 namespace {
 
-TEST(Cli, FitGammaPrintsTheUe4Fit) {
+TEST(CliTools, FitGammaPrintsTheUe4Fit) {
   const std::string pairs = writeText(
       "ue4.csv", "in,out\n255,5000\n216,3470\n171,2076\n123,1005\n85,445\n76,349\n59,200\n");
   const ProcessResult r = manylight("fit-gamma " + pairs);
@@ -27,7 +27,7 @@ TEST(Cli, FitGammaPrintsTheUe4Fit) {
   EXPECT_EQ(e.err, "manylight: " + bad + ": a power-law fit needs at least two different inputs\n");
 }
 
-TEST(Cli, CalibrationMeasuresTheExactSrgbCurve) {
+TEST(CliTools, CalibrationMeasuresTheExactSrgbCurve) {
   // Probes of grey 8-bit light colours on the reference path: the renderer decodes them with
   // the exact sRGB curve, so the fit is the best power law for that curve over codes 11–255
   // (computed independently in double precision: γ = 1.965171) and strays from it by up
@@ -41,7 +41,7 @@ TEST(Cli, CalibrationMeasuresTheExactSrgbCurve) {
       << r.out;
 }
 
-TEST(Cli, LightListsAddToTheScenesLights) {
+TEST(CliTools, LightListsAddToTheScenesLights) {
   RoomOptions o;
   o.lightCount = 3;
   const std::string scene = roomScene(o);
@@ -73,7 +73,7 @@ TEST(Cli, LightListsAddToTheScenesLights) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-TEST(Cli, CompareAssertsARenderAgainstAStoredImage) {
+TEST(CliTools, CompareAssertsARenderAgainstAStoredImage) {
   const fs::path dir = testFolder();
   const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
   const std::string a = (dir / "a.png").string(), b = (dir / "b.png").string(),
@@ -123,7 +123,7 @@ TEST(Cli, CompareAssertsARenderAgainstAStoredImage) {
 // libpng prints "libpng error: ..." lines of its own for a corrupt PNG before OpenImageIO
 // reports the error (one line before a texture's error, three before compare's). Each
 // error stays one line, the program's own.
-TEST(Cli, ACorruptPngGivesOneLineOfError) {
+TEST(CliTools, ACorruptPngGivesOneLineOfError) {
   const fs::path dir = testFolder();
   const std::string png = (dir / "bad.png").string(), out = (dir / "out.png").string();
   std::ofstream(png, std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8) << "this is no PNG";
@@ -140,7 +140,7 @@ TEST(Cli, ACorruptPngGivesOneLineOfError) {
                        "\": " + why);
 }
 
-TEST(Cli, BatchesRenderEverySceneInOneProcess) {
+TEST(CliTools, BatchesRenderEverySceneInOneProcess) {
   const fs::path dir = testFolder();
   std::vector<std::string> scenes;
   for (int i = 0; i < 4; ++i) {
@@ -204,7 +204,7 @@ TEST(Cli, BatchesRenderEverySceneInOneProcess) {
                            " does; give scenes distinct names\n");
 }
 
-TEST(Cli, BakedScenesRenderAsTheirSources) {
+TEST(CliTools, BakedScenesRenderAsTheirSources) {
   RoomOptions o;
   o.lightCount = 200;
   const std::string scene = roomScene(o);
@@ -261,7 +261,7 @@ TEST(Cli, BakedScenesRenderAsTheirSources) {
   EXPECT_EQ(manylight("bake " + scene + " -o " + (dir / "room.bin").string()).exitCode, 2);
 }
 
-TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
+TEST(CliTools, PlaybackOrbitsTheCameraFrameByFrame) {
   const fs::path dir = testFolder();
   const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
   const std::string frames = (dir / "frames" / "f%03d.png").string();
@@ -349,7 +349,7 @@ TEST(Cli, PlaybackOrbitsTheCameraFrameByFrame) {
   EXPECT_EQ(r.exitCode, 2);
 }
 
-TEST(Cli, PlaybackFollowsTheCameraAnimation) {
+TEST(CliTools, PlaybackFollowsTheCameraAnimation) {
   // Keys at 0, 1 and 2 s; at 2 frames per second that is frames 0..4, the last on the last key.
   const std::string scene = animatedScene("animated");
   const fs::path dir = testFolder();
@@ -364,7 +364,7 @@ TEST(Cli, PlaybackFollowsTheCameraAnimation) {
   EXPECT_FALSE(fs::exists(dir / "a5.png"));
 }
 
-TEST(Cli, FifosAreRefusedWithoutBlocking) {
+TEST(CliTools, FifosAreRefusedWithoutBlocking) {
   // Opening a FIFO for reading blocks until a writer comes; every input must be checked first.
   const fs::path fifo = testFolder() / "pipe.gltf";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);

@@ -78,7 +78,7 @@ void expectSameTriangles(const Primitive& a, const Primitive& b, float tol, floa
 // radians), texture coordinates 12 bits over 1 (2.4e-4). Each tolerance is one step.
 constexpr float kDracoPosition = 2.0f / 16383, kDracoNormal = 4e-3f, kDracoUv = 1.0f / 4095;
 
-TEST(Draco, AGeneratedPrimitiveLoadsAsThePlainOne) {
+TEST(Compression, DracoAGeneratedPrimitiveLoadsAsThePlainOne) {
   const TestMesh mesh = gridMesh(12);
   const Scene plain = loadGltf(writeFile("plain.glb", plainMeshFile(mesh)));
   for (const bool edgebreaker : {true, false}) {
@@ -92,7 +92,7 @@ TEST(Draco, AGeneratedPrimitiveLoadsAsThePlainOne) {
 
 // The glTF sample Box, plain and Draco (positions quantised to 11 bits over its extent of 1:
 // the Draco box's corners are at ±0.50049 instead of ±0.5).
-TEST(Draco, TheSampleBoxLoadsAsThePlainBox) {
+TEST(Compression, DracoTheSampleBoxLoadsAsThePlainBox) {
   const fs::path shared = MANYLIGHT_SHARED_SCENES;
   if (!fs::exists(shared / "Box/glTF-Draco/Box.gltf")) GTEST_SKIP() << "no " << shared;
   const Scene plain = loadGltf((shared / "Box/glTF/Box.gltf").string());
@@ -125,7 +125,7 @@ void claimTriangles(GltfFile& f) {
   f.json["bufferViews"][0]["byteLength"] = f.json["bufferViews"][0]["byteLength"].get<int>() + 4;
 }
 
-TEST(Draco, BadInputsAreRefusedWithOneExactLine) {
+TEST(Compression, DracoBadInputsAreRefusedWithOneExactLine) {
   const std::string where = "mesh 0 primitive 0: KHR_draco_mesh_compression: ";
   const BadInput cases[] = {
       {"corrupt magic", [](GltfFile& f) { f.bin[0] = 'X'; },
@@ -189,7 +189,7 @@ TEST(Draco, BadInputsAreRefusedWithOneExactLine) {
   }
 }
 
-TEST(Meshopt, ViewsLoadIdenticallyToThePlainFile) {
+TEST(Compression, MeshoptViewsLoadIdenticallyToThePlainFile) {
   const TestMesh mesh = gridMesh(12);
   const Scene plain = loadGltf(writeFile("plain.glb", plainMeshFile(mesh)));
   const Primitive& a = onlyPrimitive(plain);
@@ -210,7 +210,7 @@ TEST(Meshopt, ViewsLoadIdenticallyToThePlainFile) {
 // component after renormalisation (two steps: 2/127); exponential texture coordinates with a
 // 15-bit signed mantissa (14 bits of magnitude) under an exponent shared by the vector's
 // components, so scaled to its larger one (at most 1), are within 2^-14.
-TEST(Meshopt, FilteredViewsLoadWithinTheirPrecision) {
+TEST(Compression, MeshoptFilteredViewsLoadWithinTheirPrecision) {
   const TestMesh mesh = gridMesh(12);
   const Primitive a = onlyPrimitive(loadGltf(writeFile("plain.glb", plainMeshFile(mesh))));
   const Scene s = loadGltf(writeFile("filters.glb", meshoptMeshFile(mesh, true, false)));
@@ -227,7 +227,7 @@ TEST(Meshopt, FilteredViewsLoadWithinTheirPrecision) {
 
 // The QUATERNION filter (animation rotations), on a model built here: 12-bit components
 // decode to within 2^-11 of the unit quaternion, stored as 16-bit normalised integers.
-TEST(Meshopt, QuaternionViewsDecodeWithinTheirPrecision) {
+TEST(Compression, MeshoptQuaternionViewsDecodeWithinTheirPrecision) {
   std::vector<float> q;
   for (int i = 0; i < 20; ++i) {
     const float angle = 0.3f * i, s = std::sin(angle / 2);
@@ -270,7 +270,7 @@ TEST(Meshopt, QuaternionViewsDecodeWithinTheirPrecision) {
 
 // The meshopt grid of 2×2 quads: 9 vertices, 24 indices; views 0 positions (108 bytes), 1
 // normals, 2 texcoords, 3 indices; accessor 3 the indices; buffer 1 the placeholder.
-TEST(Meshopt, BadInputsAreRefusedWithOneExactLine) {
+TEST(Compression, MeshoptBadInputsAreRefusedWithOneExactLine) {
   auto ext = [](GltfFile& f, int view) -> nlohmann::json& {
     return f.json["bufferViews"][view]["extensions"]["EXT_meshopt_compression"];
   };
@@ -310,7 +310,7 @@ TEST(Meshopt, BadInputsAreRefusedWithOneExactLine) {
 }
 
 // Decoded bytes count against --max-file-bytes before they are allocated.
-TEST(Meshopt, DecodedBytesAreHeldToTheFileLimit) {
+TEST(Compression, MeshoptDecodedBytesAreHeldToTheFileLimit) {
   const TestMesh mesh = gridMesh(40);
   const std::string path = writeFile("big.glb", meshoptMeshFile(mesh, false, false));
   LoadOptions options;

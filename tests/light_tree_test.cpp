@@ -136,7 +136,7 @@ TEST(LightTree, MetricSplitGivesSmallerClustersThanTheLongestAxis) {
   EXPECT_LE(metric, longest);
 }
 
-TEST(LightTreePack, WordsFollowTheLayout) {
+TEST(LightTree, PackedWordsFollowTheLayout) {
   const auto lights = randomLights(10, true);
   const auto trees = buildLightTrees(lights);
   const PackedTrees packed = packLightTrees(trees);

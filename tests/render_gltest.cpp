@@ -18,9 +18,10 @@ struct OracleCase {
   int camera;
 };
 
-class OracleTest : public ::testing::TestWithParam<OracleCase> {};
+// One suite: the oracle cases are parameterised by scene, the other tests take no parameter.
+class Render : public ::testing::TestWithParam<OracleCase> {};
 
-TEST_P(OracleTest, ReferenceMatchesOracle) {
+TEST_P(Render, ReferenceMatchesOracle) {
   const OracleCase& p = GetParam();
   context();
   RoomOptions o;
@@ -39,7 +40,7 @@ TEST_P(OracleTest, ReferenceMatchesOracle) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Scenes, OracleTest,
+    , Render,
     ::testing::Values(OracleCase{"one_point", 1, false, false, false, false, 0},
                       OracleCase{"seven_mixed_range_textured", 7, true, true, true, false, 0},
                       OracleCase{"sixty_four_mixed_specular", 64, true, true, true, true, 0},
@@ -48,7 +49,7 @@ INSTANTIATE_TEST_SUITE_P(
                       OracleCase{"orthographic_seven", 7, true, true, true, true, 1}),
     [](const auto& info) { return std::string(info.param.name); });
 
-TEST(Render, DefaultRigLightsASceneWithoutLights) {
+TEST_F(Render, DefaultRigLightsASceneWithoutLights) {
   context();
   RoomOptions o;
   o.lightCount = 0;
@@ -61,7 +62,7 @@ TEST(Render, DefaultRigLightsASceneWithoutLights) {
   EXPECT_EQ(gpu.lightCount, 3u);
 }
 
-TEST(Render, FramingShowsTheWholeSceneWithoutCamera) {
+TEST_F(Render, FramingShowsTheWholeSceneWithoutCamera) {
   context();
   // A box alone, no camera, no lights: framed from the 3/4 view and lit by the rig.
   GltfBuilder b;
@@ -88,7 +89,7 @@ TEST(Render, FramingShowsTheWholeSceneWithoutCamera) {
   EXPECT_GT(covered, 64 * 64 / 8);
 }
 
-TEST(Render, ManyPassesEqualTheOracle) {
+TEST_F(Render, ManyPassesEqualTheOracle) {
   // Long light lists are split into additive passes; passes of 37 lights (an odd size, so
   // pass boundaries fall inside each light type's group) must add up to the exact image.
   context();
@@ -111,7 +112,7 @@ TEST(Render, ManyPassesEqualTheOracle) {
   EXPECT_EQ(gpu.frame.lightingPasses, (1000 + 36) / 37);
 }
 
-TEST(Render, SmallImagesWithManyLightsStayWithinTheLoopLimit) {
+TEST_F(Render, SmallImagesWithManyLightsStayWithinTheLoopLimit) {
   // An 8×8 image would take all 300,000 lights in one pass by the evaluation bound alone;
   // llvmpipe would then end the loop at 65,535 iterations and drop most lights silently.
   context();
@@ -150,7 +151,7 @@ TEST(Render, SmallImagesWithManyLightsStayWithinTheLoopLimit) {
 namespace manylight::testing {
 namespace {
 
-TEST(Render, AGBufferPastTheContextsLimitsNamesTheLimit) {
+TEST_F(Render, AGBufferPastTheContextsLimitsNamesTheLimit) {
   context();
   const gl::RenderSizeLimits limits = gl::renderSizeLimits();
   EXPECT_GE(limits.maxTextureSize, 1024);  // OpenGL 3.3's minimum

@@ -110,7 +110,7 @@ void runFarm(const FarmExample& example, const fs::path& data,
   EXPECT_EQ(thumbnails, int(scenes.size()));
 }
 
-TEST(Cli, ScaleOutExamplesRenderEverySceneOnce) {
+TEST(ScaleOut, ExamplesRenderEverySceneOnce) {
   const std::string doc = readFile(MANYLIGHT_SOURCE_DIR "/docs/scale-out.md");
   std::vector<std::string> scenes;
   for (int i = 0; i < 10; ++i) {

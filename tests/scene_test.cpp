@@ -156,7 +156,7 @@ std::string loadError(const std::string& path, const LoadOptions& options = {}) 
   return "";
 }
 
-TEST(AssetFiles, LinksOutOfTheFolderFifosAndOversizedFilesAreRefused) {
+TEST(Scene, AssetLinksOutOfTheFolderFifosAndOversizedFilesAreRefused) {
   namespace fs = std::filesystem;
   const fs::path outside = testFolder() / "outside.bin";
   std::ofstream(outside) << "12345678";
@@ -194,7 +194,7 @@ namespace {
 // decoder's exact message, and other bytes before any decoder sees them. (That OpenImageIO
 // tries no other reader on them is not visible here: the other readers refuse such bytes
 // with the same message.)
-TEST(Images, CorruptPngAndJpegAreRefusedWithTheirDecodersMessage) {
+TEST(Scene, CorruptPngAndJpegImagesAreRefusedWithTheirDecodersMessage) {
   namespace fs = std::filesystem;
   const fs::path dir = testFolder() / "images";
   fs::create_directories(dir);
@@ -222,7 +222,7 @@ TEST(Images, CorruptPngAndJpegAreRefusedWithTheirDecodersMessage) {
 // binary chunk) is refused before any decoder reads it: tinygltf hands such bytes over
 // unchecked, and the PNG reader read beyond the buffer (libFuzzer found it; this test runs
 // under AddressSanitizer in CI).
-TEST(Images, AViewPastItsBufferIsRefusedBeforeDecoding) {
+TEST(Scene, AnImageViewPastItsBufferIsRefusedBeforeDecoding) {
   std::string bin = std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16) + std::string(48, '\0');
   std::string json =
       R"({"asset": {"version": "2.0"}, "images": [{"bufferView": 0, "mimeType": "image/png"}],)"

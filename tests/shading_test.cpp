@@ -54,7 +54,7 @@ TEST(Shading, IrradianceFollowsInverseSquareAndCosine) {
 }
 
 // The packed cone (scale, offset) reproduces the smoothstep of the shading model.
-TEST(LightPack, LayoutMatchesTheShadingModel) {
+TEST(Shading, LightPackLayoutMatchesTheShadingModel) {
   Light spot;
   spot.type = LightType::Spot;
   spot.position = {1.0f, 2.0f, 3.0f};
@@ -89,7 +89,7 @@ TEST(LightPack, LayoutMatchesTheShadingModel) {
   EXPECT_EQ(d[11], 1.0f);
 }
 
-TEST(Srgb, ExactEncodingNotAPowerLaw) {
+TEST(Shading, SrgbIsTheExactEncodingNotAPowerLaw) {
   EXPECT_EQ(encodeSrgb8(0.0), 0);
   EXPECT_EQ(encodeSrgb8(1.0), 255);
   EXPECT_EQ(encodeSrgb8(0.5), 188);      // a 2.2 power would give 186

@@ -256,7 +256,7 @@ TEST(TileCuts, ACutStartedFromItsSquaresSeedHoldsForLess) {
 
 // The cut's heap keeps std::push_heap's and std::pop_heap's layout, so cuts list their
 // entries in the same order (and images stay bit for bit) whichever is used.
-TEST(CutHeap, LaysKeysOutAsTheStandardHeapDoes) {
+TEST(TileCuts, CutHeapLaysKeysOutAsTheStandardHeapDoes) {
   std::mt19937_64 random(7);
   std::vector<std::uint64_t> ours, standard;
   std::uint64_t next = 0;
@@ -308,7 +308,7 @@ bool regionHolds(const ShadingRegion& g, const SyntheticGBuffer& gb, std::size_t
 // pixel lies in the region its cell's cut holds for, and every shared pixel stays within its
 // cut's bound (the total rule's guarantee); a frame seen again keeps every cut, one panned a
 // little keeps most, and another rule starts over.
-TEST(CellCuts, KeptCutsHoldForEveryPixelAsTheViewMoves) {
+TEST(TileCuts, KeptCellCutsHoldForEveryPixelAsTheViewMoves) {
   const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 1500, 7);
   const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
   CellCuts cells(cutter);
@@ -347,7 +347,7 @@ TEST(CellCuts, KeptCutsHoldForEveryPixelAsTheViewMoves) {
 
 // Past the memory limit, the cells the last frame did not use are dropped (and found again if
 // they come back into view); the last frame's stay.
-TEST(CellCuts, PastTheLimitUnusedCellsAreDropped) {
+TEST(TileCuts, PastTheLimitUnusedCellsAreDropped) {
   const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 500, 7);
   const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
   CellCuts cells(cutter, 1);  // any frame's cells exceed one word
@@ -370,7 +370,7 @@ TEST(CellCuts, PastTheLimitUnusedCellsAreDropped) {
 // cell still full take squares' cuts for the frame, as render's frames have them, and all of
 // them hold. (2,000 uniform lights under the total rule, at most 1,600 nodes: 65 cells' cuts
 // fit, of 328 cells made, and one square's.)
-TEST(CellCuts, FullCellsSplitThenFallBackToSquares) {
+TEST(TileCuts, FullCellsSplitThenFallBackToSquares) {
   const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
   const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
   CellCuts cells(cutter);

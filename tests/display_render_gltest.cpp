@@ -23,7 +23,7 @@ std::string whitePlane() {
   return path;
 }
 
-TEST(Display, TheBareRenderOfAWhiteSurfaceUnderTheRigDoesNotClip) {
+TEST(DisplayRender, TheBareRenderOfAWhiteSurfaceUnderTheRigDoesNotClip) {
   const std::string scene = whitePlane();
   const fs::path dir = testFolder();
   for (const char* args : {"", " --tone-map none --exposure 0"}) {
@@ -47,7 +47,7 @@ TEST(Display, TheBareRenderOfAWhiteSurfaceUnderTheRigDoesNotClip) {
   }
 }
 
-TEST(Display, ExrStaysLinearAndAnExplicitExposureScalesIt) {
+TEST(DisplayRender, ExrStaysLinearAndAnExplicitExposureScalesIt) {
   const std::string scene = whitePlane();
   const fs::path dir = testFolder();
   const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string(),
@@ -64,7 +64,7 @@ TEST(Display, ExrStaysLinearAndAnExplicitExposureScalesIt) {
   }
 }
 
-TEST(Display, BadExposuresAndToneMapsAreUsageErrors) {
+TEST(DisplayRender, BadExposuresAndToneMapsAreUsageErrors) {
   const std::string scene = whitePlane(), out = (testFolder() / "x.png").string();
   for (const char* bad :
        {"--exposure nan", "--exposure inf", "--exposure 1x", "--tone-map filmic"}) {
@@ -76,7 +76,7 @@ TEST(Display, BadExposuresAndToneMapsAreUsageErrors) {
 
 // A turntable with automatic exposure uses one EV, the first frame's, for every frame: the
 // same frames come out with that EV given explicitly.
-TEST(Display, PlaybackFixesAutomaticExposureFromTheFirstFrame) {
+TEST(DisplayRender, PlaybackFixesAutomaticExposureFromTheFirstFrame) {
   const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
   const fs::path dir = testFolder();
   const std::string stats = (dir / "play.json").string();

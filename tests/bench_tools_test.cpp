@@ -13,7 +13,7 @@
 namespace manylight::testing {
 namespace {
 
-TEST(LightLayouts, EveryLayoutGivesItsCountDeterministicallyAndFinite) {
+TEST(BenchTools, LightLayoutsEveryLayoutGivesItsCountDeterministicallyAndFinite) {
   for (const auto& [layout, name] : lightLayoutNames()) {
     EXPECT_EQ(parseLightLayout(name), layout);
     EXPECT_EQ(lightLayoutName(layout), name);
@@ -30,7 +30,7 @@ TEST(LightLayouts, EveryLayoutGivesItsCountDeterministicallyAndFinite) {
   }
 }
 
-TEST(LightLayouts, UnknownNameIsRefusedWithTheChoices) {
+TEST(BenchTools, LightLayoutsUnknownNameIsRefusedWithTheChoices) {
   try {
     parseLightLayout("spiral");
     FAIL() << "no error";
@@ -42,7 +42,7 @@ TEST(LightLayouts, UnknownNameIsRefusedWithTheChoices) {
   }
 }
 
-TEST(LightLayouts, AdversarialLayoutsAreWhatTheySay) {
+TEST(BenchTools, LightLayoutsAdversarialLayoutsAreWhatTheySay) {
   const auto bright = layoutLights(LightLayout::BrightAmongDim, 1000, 7);
   double dim = 0.0;
   for (std::size_t i = 1; i < bright.size(); ++i) dim += bright[i].intensity;
@@ -72,7 +72,7 @@ Image image(int w, int h, float value) {
   return i;
 }
 
-TEST(ImageErrors, EqualImagesHaveNoError) {
+TEST(BenchTools, ImageErrorsEqualImagesHaveNoError) {
   const Image a = image(4, 3, 0.5f);
   const ImageErrors e = measureErrors(a, a);
   EXPECT_EQ(e.pixels, 12);
@@ -82,7 +82,7 @@ TEST(ImageErrors, EqualImagesHaveNoError) {
   EXPECT_EQ(e.offByMoreThanOneCode, 0.0);
 }
 
-TEST(ImageErrors, FiguresCoverCoveredPixelsOfTheChosenRows) {
+TEST(BenchTools, ImageErrorsFiguresCoverCoveredPixelsOfTheChosenRows) {
   Image ref = image(4, 2, 0.5f), img = ref;
   ref.pixel(3, 1)[3] = 0.0f;  // background: never compared
   img.pixel(3, 1)[0] = 100.0f;
@@ -104,7 +104,7 @@ TEST(ImageErrors, FiguresCoverCoveredPixelsOfTheChosenRows) {
   EXPECT_EQ(e.maxRelative, 0.0);
 }
 
-TEST(ImageErrors, NaNAndBlackReferencesReadAsLargeErrors) {
+TEST(BenchTools, ImageErrorsNaNAndBlackReferencesReadAsLargeErrors) {
   Image ref = image(2, 1, 0.0f), img = ref;
   ref.pixel(0, 0)[3] = ref.pixel(1, 0)[3] = 1.0f;
   img.pixel(0, 0)[1] = std::nanf("");
@@ -121,7 +121,7 @@ TEST(ImageErrors, NaNAndBlackReferencesReadAsLargeErrors) {
   EXPECT_THROW(measureErrors(other, ref), ImageError);
 }
 
-TEST(ReferenceEstimate, FollowsTheMeasuredThroughput) {
+TEST(BenchTools, ReferenceEstimateFollowsTheMeasuredThroughput) {
   // Lights × every pixel (covered or not) over kReferenceEvaluationsPerSecond:
   // 65,536 × 640 × 480 / 4e8 = 50.3 s.
   EXPECT_NEAR(referenceSecondsEstimate(65536, 640, 480), 50.3, 0.1);
@@ -129,7 +129,7 @@ TEST(ReferenceEstimate, FollowsTheMeasuredThroughput) {
   EXPECT_EQ(referenceSecondsEstimate(0, 640, 480), 0.0);
 }
 
-TEST(ReferenceEstimate, NotesOnlyManyLightsOverManyPixels) {
+TEST(BenchTools, ReferenceEstimateNotesOnlyManyLightsOverManyPixels) {
   // 2^32 light evaluations: 13,981 lights at 640×480 are under it, 13,982 over.
   EXPECT_EQ(slowReferenceNote("a.glb", 13981, 640, 480), "");
   EXPECT_EQ(slowReferenceNote("a.glb", 13982, 640, 480),
