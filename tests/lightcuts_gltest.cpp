@@ -174,7 +174,7 @@ TEST_F(LightcutsTest, NodeRuleErrorsAreMeasured) {
 }
 
 // Playback keeps its shared cuts per cell of the scene from frame to frame
-// (render/cell_cuts.h): along an orbit, every frame keeps the total rule's guarantee against
+// (cuts/cell_cuts.h): along an orbit, every frame keeps the total rule's guarantee against
 // the reference of the same view, and later frames keep most of their cuts.
 TEST_F(LightcutsTest, KeptCutsHoldTheTotalRuleFrameByFrame) {
   Scene scene = *room_;
