@@ -1,5 +1,5 @@
 #pragma once
-// The shared cut's priority queue (cuts/tile_cuts.cpp): a max-heap of unique 64-bit keys.
+// The shared cut's priority queue (cuts/cut_region.cpp): a max-heap of unique 64-bit keys.
 #include <cstddef>
 #include <cstdint>
 #include <vector>

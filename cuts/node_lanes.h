@@ -1,5 +1,5 @@
 #pragma once
-// The CPU cut's node bounds and far field linearisation bounds (cuts/tile_cuts.cpp) for up
+// The CPU cut's node bounds and far field linearisation bounds (cuts/cut_region.cpp) for up
 // to kLanes nodes at once (cuts/node_lanes_kernel.h), written once over a lane type: one
 // float or, on x86-64 CPUs with AVX2 (under GCC), eight in a register. Every lane takes every
 // branch and the results are selected, so the two give the same results bit for bit: the same IEEE

@@ -225,7 +225,7 @@ class TileCutter {
     bool leaf() const { return leafRow != 0.0f; }
   };
   const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
-  // One cut in the making (tile_cuts.cpp): the steps below share it.
+  // One cut in the making (cut_region.cpp): the steps below share it.
   struct Cut;
   // Refines the cut from its start until the rule holds or it is full; false when it is full
   // and not wanted as a seed, so that nothing is left to do.

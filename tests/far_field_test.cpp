@@ -100,7 +100,7 @@ RegionTerms regionOf(glm::vec3 lo, glm::vec3 hi, glm::vec3 axis, float spread) {
   return r;
 }
 
-// A point or spot light as an entry of lane 0 of `in`, as tile_cuts.cpp fills it.
+// A point or spot light as an entry of lane 0 of `in`, as cuts/cut_region.cpp fills it.
 void setEntry(FoldLanes& in, const Light& light) {
   in.tree[0] = light.type == LightType::Spot ? 2.0f : 1.0f;
   for (int c = 0; c < 3; ++c) {

@@ -1,5 +1,3 @@
-#include "cuts/tile_cuts.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,6 +7,7 @@
 #include "cuts/cut_heap.h"
 #include "cuts/far_field.h"
 #include "cuts/node_lanes.h"
+#include "cuts/tile_cuts.h"
 
 namespace manylight {
 

@@ -1,6 +1,6 @@
 // The frame's shared cuts (cuts/tile_cuts.h): squares of pixels, their seeds, the splits of
 // groups whose cuts fill up, and the texels of all the cuts; TileCutter::cutRegion (in
-// tile_cuts.cpp) finds each group's cut.
+// cut_region.cpp) finds each group's cut.
 #include <algorithm>
 #include <atomic>
 #include <memory>
