@@ -165,7 +165,7 @@ void addMethodOptions(CLI::App* app, MethodArgs& a) {
       ->check(CLI::Range(1, kMaxCutLimit));
   app->add_option("--cut-tile", a.cutTile,
                   "lightcuts: pixels share the cut of their N x N square where the rule holds for "
-                  "them (render/tile_cuts.h); 1: a cut per pixel")
+                  "them (cuts/tile_cuts.h); 1: a cut per pixel")
       ->capture_default_str()
       ->check(CLI::IsMember({1, 4, 8, 16, 32, 64}));
 }

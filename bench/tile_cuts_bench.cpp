@@ -1,4 +1,4 @@
-// The CPU half of shared tile cuts (render/tile_cuts.h): finding one cut per screen square
+// The CPU half of shared tile cuts (cuts/tile_cuts.h): finding one cut per screen square
 // of a 640×480 G-buffer, at 1,024 and 65,536 uniform lights, node and total rules, on one
 // thread and on all. The G-buffer is synthetic (a floor seen from above, a wall on the
 // right) so that no GL is needed. Run: build/bin/manylight_tile_cuts_bench
@@ -10,8 +10,8 @@
 
 #include "bake/light_tree.h"
 #include "bake/light_tree_pack.h"
+#include "cuts/tile_cuts.h"
 #include "generators/light_layouts.h"
-#include "render/tile_cuts.h"
 
 namespace {
 

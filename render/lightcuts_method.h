@@ -8,11 +8,11 @@
 
 #include "bake/light_tree.h"
 #include "bake/light_tree_pack.h"
+#include "cuts/cell_cuts.h"
+#include "cuts/tile_cuts.h"
 #include "gl/texture_buffer.h"
-#include "render/cell_cuts.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
-#include "render/tile_cuts.h"
 #include "scene/camera.h"
 
 namespace manylight {
@@ -24,11 +24,11 @@ struct LightcutsSettings {
   ErrorMode mode = ErrorMode::Node;
   int maxCut = 2000;  // nodes per cut; at most kMaxCutLimit
   // Pixels share the cut of their tile of tileSize × tileSize pixels where it holds for
-  // them (render/tile_cuts.h); 1: every pixel finds its own cut. Not for the distance
+  // them (cuts/tile_cuts.h); 1: every pixel finds its own cut. Not for the distance
   // criterion.
   int tileSize = 16;
   // Playback: the shared cuts are per cell of the scene and kept from frame to frame
-  // (render/cell_cuts.h) instead of per square of the screen, found again only where the
+  // (cuts/cell_cuts.h) instead of per square of the screen, found again only where the
   // camera shows new places. For the frames of one scene whose lights and geometry stay put.
   bool keepCuts = false;
   TreeOptions trees;  // how the trees are built and packed (used when they are built)
@@ -45,9 +45,9 @@ struct CutStats {
   double averageCut = 0.0;
   int maxCut = 0;
   long long pixelsAtMaxCut = 0;
-  long long pixelsSharedCut = 0;  // pixels that took their group's cut (render/tile_cuts.h)
+  long long pixelsSharedCut = 0;  // pixels that took their group's cut (cuts/tile_cuts.h)
   // Groups of pixels with a shared cut, groups left per pixel, and groups split into their
-  // surfaces (render/tile_cuts.h).
+  // surfaces (cuts/tile_cuts.h).
   int sharedCuts = 0, perPixelGroups = 0, surfaceSplits = 0;
   double lightEvaluations = 0.0;       // per pixel
   double nodeEvaluations = 0.0;        // per pixel (error bounds or distance tests), with the
@@ -94,7 +94,7 @@ class LightcutsMethod {
   gl::TextureBuffer nodes_;
   std::unique_ptr<TileCutter> tileCutter_;   // null for the distance criterion
   mutable std::unique_ptr<CellCuts> cells_;  // made by the first frame with keepCuts
-  mutable gl::TextureBuffer tileCuts_;       // this frame's (render/tile_cuts.h)
+  mutable gl::TextureBuffer tileCuts_;       // this frame's (cuts/tile_cuts.h)
   gl::Texture cutOfPixel_;                   // this frame's cut per pixel (R32UI)
   mutable TileCuts tileInfo_;                // its counts (the texels are dropped)
   mutable std::vector<float> readback_;

@@ -1,8 +1,8 @@
-// The far field of a shared cut (render/far_field.h), in double precision: a spot folded
+// The far field of a shared cut (cuts/far_field.h), in double precision: a spot folded
 // with its cone is its first-order expansion within the linearisation bound, entries folded
 // into it stay within their bound at points of the region, a light whose range sphere cuts
 // the region never folds, and a far field moved to another centre is the same function.
-#include "render/far_field.h"
+#include "cuts/far_field.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "bake/light_pack.h"
-#include "render/node_lanes.h"
+#include "cuts/node_lanes.h"
 #include "tests/far_field_support.h"
 
 namespace manylight {
@@ -100,7 +100,7 @@ RegionTerms regionOf(glm::vec3 lo, glm::vec3 hi, glm::vec3 axis, float spread) {
   return r;
 }
 
-// A point or spot light as an entry of lane 0 of `in`, as tile_cuts.cpp fills it.
+// A point or spot light as an entry of lane 0 of `in`, as cuts/cut_region.cpp fills it.
 void setEntry(FoldLanes& in, const Light& light) {
   in.tree[0] = light.type == LightType::Spot ? 2.0f : 1.0f;
   for (int c = 0; c < 3; ++c) {

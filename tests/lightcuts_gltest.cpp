@@ -257,7 +257,7 @@ INSTANTIATE_TEST_SUITE_P(, Lightcuts, ::testing::ValuesIn(kCases),
                          });
 
 // Playback keeps its shared cuts per cell of the scene from frame to frame
-// (render/cell_cuts.h): along an orbit, every frame keeps the total rule's guarantee against
+// (cuts/cell_cuts.h): along an orbit, every frame keeps the total rule's guarantee against
 // the reference of the same view, and later frames keep most of their cuts.
 TEST_F(Lightcuts, KeptCutsHoldTheTotalRuleFrameByFrame) {
   Scene scene = room(false);

@@ -1,6 +1,6 @@
 // The CPU cut's node and fold bounds eight lanes at once (AVX2) against one lane at a time:
 // the same results bit for bit, on random nodes and regions that take every branch.
-#include "render/node_lanes.h"
+#include "cuts/node_lanes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-// Tile cuts (render/tile_cuts.h) without GL: every shared cut, its far field included
-// (render/far_field.h), evaluated in double precision at every pixel of its square, is
+// Tile cuts (cuts/tile_cuts.h) without GL: every shared cut, its far field included
+// (cuts/far_field.h), evaluated in double precision at every pixel of its square, is
 // within the bounds the pixels check against.
-#include "render/tile_cuts.h"
+#include "cuts/tile_cuts.h"
 
 #include <gtest/gtest.h>
 
@@ -15,10 +15,10 @@
 #include "bake/light_tree.h"
 #include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
+#include "cuts/cell_cuts.h"
+#include "cuts/cut_heap.h"
+#include "cuts/far_field.h"
 #include "generators/light_layouts.h"
-#include "render/cell_cuts.h"
-#include "render/cut_heap.h"
-#include "render/far_field.h"
 #include "scene/shading_model.h"
 #include "tests/far_field_support.h"
 
@@ -304,7 +304,7 @@ bool regionHolds(const ShadingRegion& g, const SyntheticGBuffer& gb, std::size_t
          glm::dot(n, g.axis) >= g.cosSpread;
 }
 
-// Cuts kept per cell from frame to frame (render/cell_cuts.h), while the view pans: every
+// Cuts kept per cell from frame to frame (cuts/cell_cuts.h), while the view pans: every
 // pixel lies in the region its cell's cut holds for, and every shared pixel stays within its
 // cut's bound (the total rule's guarantee); a frame seen again keeps every cut, one panned a
 // little keeps most, and another rule starts over.

@@ -1,7 +1,7 @@
-#include "render/far_field.h"
+#include "cuts/far_field.h"
 
 #include "bake/light_tree_layout.h"
-#include "render/node_lanes.h"
+#include "cuts/node_lanes.h"
 
 namespace manylight {
 namespace {

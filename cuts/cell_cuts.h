@@ -1,28 +1,28 @@
 #pragma once
 // Shared cuts kept from frame to frame of a playback, per cell of the scene instead of per
-// square of the screen (render/tile_cuts.h). No GL here.
+// square of the screen (cuts/tile_cuts.h). No GL here.
 //
 // A square's shared cut holds for the shading points of that square in one frame: when the
-// camera moves, every square sees other points and the CPU finds every cut again, about two
-// thirds of a frame's time at 65,536 lights. The scene does not move, though. So in playback
+// camera moves, every square sees other points and the CPU finds every cut again, most of a
+// frame's time with many lights. The scene does not move, though. So in playback
 // the pixels are grouped by where they are in the scene: a cell is a cube of space (edge
 // cellSize(), about kCellPixels pixels of the first frame) and a bucket of normal directions
 // (an octahedral map of kNormalBuckets² buckets, each about 8° wide), and its cut holds for
-// a region (render/pixel_groups.h: a box of positions, a cone of normals) that contains every
+// a region (cuts/pixel_groups.h: a box of positions, a cone of normals) that contains every
 // shading point the cell has had. A frame whose pixels lie in their cells' regions reuses the
 // cuts as they are. A pixel outside its cell's region grows the region, and the cell's cut is
 // found anew: the box joins the new points and, along an axis on which the points spread,
 // widens by kGrow of the cube's edge (within the cube; a plane stays as thin as it is), and a
 // cone that spreads widens by kConeGrow radians more than it must, so that regions soon stop
 // growing. A cell whose cut is full splits into eight cubes of half its edge, for good
-// (kMaxCellLevel). Each pixel checks the rule for itself as before, with bounds that hold over
+// (kMaxCellLevel). Each pixel checks the rule for itself, with bounds that hold over
 // its cell's region, which holds the pixel: the total rule's guarantee is kept.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
 
-#include "render/pixel_groups.h"
-#include "render/tile_cuts.h"
+#include "cuts/pixel_groups.h"
+#include "cuts/tile_cuts.h"
 
 namespace manylight {
 
@@ -30,7 +30,7 @@ inline constexpr int kCellPixels = 12;
 // A cell whose cut is full is split into eight cubes of half its edge (each with its buckets),
 // and those again, kMaxCellLevel times in all; the split is kept with the cells. The pixels of
 // a full cell at the last level take cuts of squares of kFallbackTile pixels, as render's
-// frames do (render/tile_cuts.h), found for that frame only.
+// frames do (cuts/tile_cuts.h), found for that frame only.
 inline constexpr int kMaxCellLevel = 2;
 inline constexpr int kFallbackTile = 16;
 inline constexpr int kNormalBuckets = 16;
@@ -84,6 +84,14 @@ class CellCuts {
   // pixels' cells) to hold those pixels; returns those cells, in order.
   std::vector<int> grow(const GBufferPixels& px, const std::vector<int>& cellOfPixel,
                         const std::vector<std::uint8_t>& outside);
+  // Finds the cuts of the cells `grown`, at `level`, on `threads` threads; returns the node
+  // bounds evaluated.
+  long long cutCells(const std::vector<int>& grown, const CutRule& rule, int threads, int level);
+  // The frame's cuts into `out`: its cells' in the order the pixels first use them (cellOfPixel;
+  // grownAll, the cells cut this frame), then squares' cuts for the pixels of full cells.
+  void frameCuts(const GBufferPixels& px, const CutRule& rule, int threads,
+                 const std::vector<int>& cellOfPixel, const std::vector<int>& grownAll,
+                 TileCuts& out);
   void clear();
   // Drops the cells the last frame did not use.
   void dropUnused();

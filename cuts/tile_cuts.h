@@ -1,6 +1,15 @@
 #pragma once
-// Cuts shared by the pixels of a screen tile (no GL here; render/lightcuts_method.cpp uploads
-// the result and glsl/lighting_lightcuts.frag uses it).
+// manylight_cuts: the CPU side of lightcuts, no GL. Start here.
+//
+// In: the light trees packed by bake/ (PackedTrees) and a frame's G-buffer read back
+// (GBufferPixels: positions and normals per pixel). Out: TileCuts, every pixel's shared cut
+// and the cuts' entries as texels, which render/lightcuts_method.cpp uploads and
+// glsl/lighting_lightcuts.frag sums. TileCutter (this file) finds them per square of the
+// screen; CellCuts (cell_cuts.h) keeps them per cell of the scene across a playback's frames.
+// Read next: pixel_groups.h (the groups of pixels a cut holds for), far_field.h (entries
+// folded into one linear function), node_lanes.h (node bounds eight at a time), cut_heap.h.
+//
+// Cuts shared by the pixels of a screen tile.
 //
 // Per pixel, most of a lightcut's cost on a software rasteriser is finding the cut: error
 // bounds for about twice as many nodes as the cut holds, in loops whose length differs
@@ -11,7 +20,7 @@
 // the node with the largest bound first, as the paper does, until the stopping rule holds
 // against the estimate at the centre with a margin (kMargin in the .cpp). A group whose cut
 // would exceed the maximum is split: into its surfaces where its normals spread wide (an
-// edge, a silhouette: render/pixel_groups.h), else into quarters, down to kFinestTile.
+// edge, a silhouette: cuts/pixel_groups.h), else into quarters, down to kFinestTile.
 // Nodes that cannot reach any point of the group are left out. Each pixel then only sums
 // its group's cut (the same loop for every pixel of the group; the entries that light all
 // of it from in front folded into one linear far field, far_field.h, with their
@@ -24,7 +33,7 @@
 // U and B are per unit albedo (Lambert only), so the check is exactly the per-pixel rule
 // with bounds at least the pixel's own: the total rule's guarantee is kept. A pixel whose
 // check fails, a specular pixel, and every pixel of a group left to per-pixel cuts (a cut
-// over the maximum even at the finest size) walks its own cut as before, in a second pass over
+// over the maximum even at the finest size) walks its own cut, in a second pass over
 // just those pixels (the stencil marks them; glsl/lighting_lightcuts.frag).
 //
 // Seeds. Most of a cut's cost is the nodes above its entries, and neighbouring squares
@@ -35,17 +44,17 @@
 // (moved to its own centre: the same linear function), and keeps the bound of the entries
 // folded before, which holds over the larger square and so over the quarter. Where the
 // quarter's cut fills up (a seed can only be refined, and a full seed, still a seed, is the
-// cut found so far) the quarter starts over from the roots. On 65,536 mixed lights at
-// 640x480, seeds cut the CPU's node bounds from 2.42 M to 2.02 M and the entries a pixel
-// sums from 129 to 116: 794 of the 1,350 squares took about 300 bounds each instead of about
-// 1,600. The rest lie where cuts are large anyway (object edges, dim undersides).
+// cut found so far) the quarter starts over from the roots. A quarter
+// whose seed holds starts from a cut close to its own and evaluates far fewer node bounds;
+// the seeds that do not hold lie where cuts are large anyway (object edges, dim undersides).
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
 
 #include "bake/light_tree_pack.h"
-#include "render/far_field.h"
-#include "render/pixel_groups.h"
+#include "cuts/far_field.h"
+#include "cuts/node_lanes.h"
+#include "cuts/pixel_groups.h"
 #include "scene/scene.h"
 
 namespace manylight {
@@ -67,7 +76,7 @@ struct CutRule {
 //                 because they give nothing at any pixel of the group (high 16 bits: a spot
 //                 whose cone turns away from all of it, a light behind every normal or out
 //                 of range of the nearest pixel)
-//   from texel 2·cuts: each cut's far field (render/far_field.h: kFarFieldTexels texels,
+//   from texel 2·cuts: each cut's far field (cuts/far_field.h: kFarFieldTexels texels,
 //     when it holds any entry), then its entries, directional, point, spot, as float bits:
 //     directional, point: 2 texels, the representative's direction towards it (or
 //                         position) and 1/range² (0: none), then the node's intensity RGB, 0
@@ -77,7 +86,7 @@ struct CutRule {
 //                         axis and cone scale, the node's intensity RGB and the cone
 //                         offset (as the light texture holds them)
 // A cut belongs to a group of pixels: a square, or the pixels of one surface in a square
-// (render/pixel_groups.h), or in playback a cell of the scene (render/cell_cuts.h).
+// (cuts/pixel_groups.h), or in playback a cell of the scene (cuts/cell_cuts.h).
 struct TileCuts {
   std::vector<std::uint32_t> cutOfPixel;  // per pixel
   std::vector<std::uint32_t> texels;      // 4 words each
@@ -86,7 +95,7 @@ struct TileCuts {
   int perPixelGroups = 0;                 // covered groups left to per-pixel cuts
   int surfaceSplits = 0;                  // groups split in two by their normals
   // Cuts found on the CPU for this frame (shared, or left to per-pixel cuts), and cuts kept
-  // from earlier frames (render/cell_cuts.h).
+  // from earlier frames (cuts/cell_cuts.h).
   int made = 0, kept = 0;
 };
 
@@ -106,6 +115,10 @@ struct RegionCut {
   std::size_t entryTexels() const;
   // Its two header texels (TileCuts), its entries starting at texel `firstEntryTexel`.
   void writeHeader(std::uint32_t firstEntryTexel, std::uint32_t* words) const;
+  // Writes it as cut number `cut` of `texels` (laid out as TileCuts'): its header, and its
+  // `count` entry texels from `words` at texel `next`, which moves past them.
+  void writeTexels(std::size_t cut, const std::uint32_t* words, std::size_t count,
+                   std::size_t& next, std::uint32_t* texels) const;
 };
 // A cut found for a larger group of pixels, from which the cut of a smaller group inside it
 // starts (TileCutter::cut): the entries it did not fold, and its far field with the bound
@@ -127,12 +140,47 @@ inline constexpr int kFinestTile = 4;
 // A group that can still be split is split once its cut would exceed this many entries (or
 // the maximum, if lower): smaller groups' cuts are smaller, so cheaper per pixel. Groups of
 // the finest size take cuts up to the maximum, since their pixels would otherwise walk cuts
-// of their own, each about as costly as a 4×4 group's shared cut (65,536 mixed lights at
-// 640x480: with the maximum at 2,000 the pass of pixels that walk their own cuts took 7.9
-// instead of 24.5 ms, and the CPU's cut 6-8 ms more).
+// of their own, each about as costly as a 4×4 group's shared cut.
 inline constexpr int kSplitCut = 1000;
 // Squares of tileSize · 2^kSeedLevels pixels find the cuts their quarters start from.
 inline constexpr int kSeedLevels = 1;
+
+// Scratch space for TileCutter::cutRegion, in the manner of an allocator passed in: its
+// buffers keep their capacity from cut to cut, so that a cut allocates nothing once they
+// have grown. cutRegion overwrites all of it; one per thread, made by the caller.
+struct CutWorkspace {
+  // A node of the cut being found.
+  struct Item {
+    float measure;  // what the rule refines by; +inf: unbounded; −1: a leaf (never refined)
+    int tree, index;
+    glm::vec3 error;     // upper (node rule) or upper − lower (total rule)
+    glm::vec3 estimate;  // at the region's centre
+    bool dark;           // no light of the node reaches any point of the region
+    bool leaf;
+    int representative;
+    float unit;           // the representative's shading at the centre per unit intensity
+    glm::vec3 intensity;  // decoded (internal nodes) or exact (leaves)
+  };
+  // An entry that may fold into the far field, with its T per channel.
+  struct Foldable {
+    int item;
+    glm::vec3 t;
+    bool operator<(const Foldable& o) const;  // smallest T first
+  };
+  std::vector<Item> items;
+  std::vector<int> settled;  // items refined no further
+  // The max-heap of the items still to refine: one word each, the measure's bits above the
+  // item's index (positive floats and +inf order as their bits do).
+  std::vector<std::uint64_t> heap;
+  std::vector<Foldable> foldable;
+  // Per item: kFolded once folded, else foldBounds' answer where it cannot fold
+  // (kZeroEntry, kFullCone), else −1.
+  std::vector<float> shape;
+  std::vector<std::uint32_t> byTree[3];  // the entries' words, per tree
+  NodeLanes lanes{};
+  FoldLanes lights{};
+  FarLanes toFold{};
+};
 
 class TileCutter {
  public:
@@ -150,13 +198,18 @@ class TileCutter {
   // `seed`: start from that cut (of a group holding this one) instead of the trees' roots.
   // `next`: the cut is wanted only as a seed for smaller groups: it is written there (a full
   // cut too) instead of to `entries`.
+  // `work`: this thread's scratch space.
+  RegionCut cutRegion(CutWorkspace& work, const ShadingRegion& region, const CutRule& rule,
+                      bool finest, std::vector<std::uint32_t>& entries,
+                      const CutSeed* seed = nullptr, CutSeed* next = nullptr) const;
+  // The same with scratch space of its own, for a single cut.
   RegionCut cutRegion(const ShadingRegion& region, const CutRule& rule, bool finest,
                       std::vector<std::uint32_t>& entries, const CutSeed* seed = nullptr,
                       CutSeed* next = nullptr) const;
 
  private:
   // A node as glsl/light_tree.glsl's fetchNode reads it, decoded once.
-  // Its first kNodeRows floats are NodeLanes' rows in order (render/node_lanes.h), so that
+  // Its first kNodeRows floats are NodeLanes' rows in order (cuts/node_lanes.h), so that
   // eight nodes are gathered into lanes by transposing them.
   struct alignas(32) Node {
     glm::vec3 boxMin, boxMax, intensity, axis{0.0f};
@@ -172,6 +225,15 @@ class TileCutter {
     bool leaf() const { return leafRow != 0.0f; }
   };
   const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
+  // One cut in the making (cut_region.cpp): the steps below share it.
+  struct Cut;
+  // Refines the cut from its start until the rule holds or it is full; false when it is full
+  // and not wanted as a seed, so that nothing is left to do.
+  bool refine(Cut& cut) const;
+  // Folds the settled entries that may into the far field (bounds only).
+  void fold(Cut& cut) const;
+  // Writes the cut's entries, far field first, to `entries` or to `next`.
+  void emit(Cut& cut, std::vector<std::uint32_t>& entries, CutSeed* next) const;
   static Node decode(const PackedTrees& packed, int tree, int i);
 
   std::vector<Node> nodes_[3];  // per tree

@@ -1,5 +1,5 @@
 #pragma once
-// The far field of a shared tile cut (render/tile_cuts.h): the cut's directional, point and
+// The far field of a shared tile cut (cuts/tile_cuts.h): the cut's directional, point and
 // spot entries that light every pixel of the tile from in front and from within their range,
 // folded into one function of the pixel that is linear in its position and normal, so a
 // pixel evaluates them all at the cost of about six entries.
@@ -45,7 +45,7 @@
 //            ≤ (6 + 1.415·σ'₁·k + 4·σ'₁·q + σ''₁·q²)/r⁴ + 4·σ'₁·q·a/r² + 2·a².
 // Where the cone is constant over the whole tile (all its light through, or none), S f
 // has the point light's bound; a spot with a hard edge (k infinite) does not fold.
-// T is computed, in single precision, by foldBounds (render/node_lanes.h), which also says
+// T is computed, in single precision, by foldBounds (cuts/node_lanes.h), which also says
 // which entries light every point of the group from in front and within their range.
 //
 // Texels (4 words, float bits), kFarFieldTexels of them: c; F per channel R, G, B; then
@@ -76,7 +76,7 @@ class FarField {
   };
   // A spot entry: a point entry times its cone.
   void addSpot(glm::vec3 position, float invRange2, const Cone& cone, glm::vec3 intensity);
-  // Entries summed per lane by addFarField (render/node_lanes.h) about centre().
+  // Entries summed per lane by addFarField (cuts/node_lanes.h) about centre().
   void add(const FarSums& sums, int entries);
   glm::vec3 centre() const { return glm::vec3(centre_); }
   // The same linear function about another centre (exact: F + J (centre − c), J).

@@ -1,4 +1,4 @@
-#include "render/node_lanes.h"
+#include "cuts/node_lanes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +21,7 @@ MANYLIGHT_INLINE inline V vsqrt(V x) { return std::sqrt(x); }
 MANYLIGHT_INLINE inline V vabs(V x) { return std::abs(x); }
 MANYLIGHT_INLINE inline V vmin(V a, V b) { return std::min(a, b); }
 MANYLIGHT_INLINE inline V vmax(V a, V b) { return std::max(a, b); }
-#include "render/node_lanes_kernel.h"
+#include "cuts/node_lanes_kernel.h"
 
 }  // namespace one_lane
 
@@ -40,7 +40,7 @@ MANYLIGHT_INLINE inline V vabs(V x) { return _mm256_andnot_ps(_mm256_set1_ps(-0.
 // std::min(a, b) = (b < a) ? b : a and std::max(a, b) = (a < b) ? b : a return a.
 MANYLIGHT_INLINE inline V vmin(V a, V b) { return _mm256_min_ps(b, a); }
 MANYLIGHT_INLINE inline V vmax(V a, V b) { return _mm256_max_ps(b, a); }
-#include "render/node_lanes_kernel.h"
+#include "cuts/node_lanes_kernel.h"
 
 void nodeBounds(const RegionTerms& region, const NodeLanes& in, BoundLanes& out) {
   nodeBoundLanes(region, in, 0, out);

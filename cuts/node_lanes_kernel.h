@@ -1,5 +1,5 @@
-// The node bounds of render/node_lanes.h over lanes of type V, included twice by
-// render/node_lanes.cpp: V = float, and V = __m256 under GCC's AVX2 target. It expects V,
+// The node bounds of cuts/node_lanes.h over lanes of type V, included twice by
+// cuts/node_lanes.cpp: V = float, and V = __m256 under GCC's AVX2 target. It expects V,
 // splat(float) → V, load(const float*) → V, store(float*, V), and vsqrt, vabs, vmin, vmax
 // with std::min and std::max's semantics ((b < a) ? b : a and (a < b) ? b : a). The bounds
 // are those glsl/lighting_lightcuts.frag's nodeBounds puts on a node at one point, over a
@@ -92,25 +92,20 @@ MANYLIGHT_INLINE inline V widenDown(V c, const ShadingRegion& g) {
   return vmax(c * g.cosSpread - vsqrt(1.0f - c * c) * g.sinSpread, splat(0.0f));
 }
 
-// Lanes [l, l + width of V) of `out`.
-MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLanes& in, int l,
-                                            BoundLanes& out) {
+constexpr float kMinDistanceSquared = 1e-12f;  // glsl/shading.glsl
+
+// The representative's shading at the region's centre per unit albedo and intensity, unless
+// its parent's is known (NodeLanes::knownUnit), for lanes [l, l + width of V).
+MANYLIGHT_INLINE inline V unitLanes(const RegionTerms& r, const NodeLanes& in, int l,
+                                    Mask directional, Mask spot) {
   constexpr float kPi = 3.14159265358979323846f;
-  constexpr float kMinDistanceSquared = 1e-12f;  // glsl/shading.glsl
   const ShadingRegion& g = r.g;
-  const V zero = splat(0.0f), one = splat(1.0f);
-  const V tree = load(in.tree + l);
-  const auto directional = tree == 0.0f, spot = tree == 2.0f;
-  const auto leaf = load(in.leaf + l) != 0.0f;
-  V intensity[3], rep[3], repAxis[3];
+  const V zero = splat(0.0f);
+  V rep[3], repAxis[3];
   for (int c = 0; c < 3; ++c) {
-    intensity[c] = load(in.intensity[c] + l);
     rep[c] = load(in.repPoint[c] + l);
     repAxis[c] = load(in.repAxis[c] + l);
   }
-
-  // The representative's shading at the centre per unit albedo and intensity (tile_cuts.cpp's
-  // unitEstimate), unless its parent's is known.
   const V towards = vmax(g.axis.x * rep[0] + g.axis.y * rep[1] + g.axis.z * rep[2], zero);
   V v[3], dir[3];
   for (int c = 0; c < 3; ++c) v[c] = rep[c] - r.centre[c];
@@ -122,31 +117,18 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   const V coneCos = repAxis[0] * -dir[0] + repAxis[1] * -dir[1] + repAxis[2] * -dir[2];
   atPoint = spot && coneCos < load(in.repCos + l) ? zero : atPoint;
   const V fresh = (directional ? towards : atPoint) / kPi;
-  const V unit = load(in.knownUnit + l) != 0.0f ? load(in.unit + l) : fresh;
-  store(out.unit + l, unit);
-  for (int c = 0; c < 3; ++c) store(out.estimate[c] + l, intensity[c] * unit);
+  return load(in.knownUnit + l) != 0.0f ? load(in.unit + l) : fresh;
+}
 
-  // The vectors from the region's points to the node's box (directional: its directions).
-  V dMin[3], dMax[3];
-  for (int c = 0; c < 3; ++c) {
-    const V bMin = load(in.boxMin[c] + l), bMax = load(in.boxMax[c] + l);
-    dMin[c] = directional ? bMin : bMin - g.pMax[c];
-    dMax[c] = directional ? bMax : bMax - g.pMin[c];
-  }
-  const VectorBox box = vectorBox(dMin, dMax);
-  const V d2Min = box.d2Min, d2Max = box.d2Max;
-  const auto touching = !directional && d2Min == 0.0f;  // unbounded
-  const V dist = vsqrt(d2Min);
-
-  // The largest and smallest cosine to the region's axis over the bounding sphere of the box
-  // of vectors.
-  const SphereAngles sphere = sphereAngles(g.axis, box);
+// The largest cosine to the region's normals over the box of vectors `box` (dMin…dMax,
+// nearest length `dist`) and its bounding sphere: the largest cosine to the axis, widened by
+// the spread γ of the normals about it, cos(max(θ − γ, 0)).
+MANYLIGHT_INLINE inline V cosUpLanes(const ShadingRegion& g, const V dMin[3], const V dMax[3],
+                                     V dist, const SphereAngles& sphere) {
+  const V zero = splat(0.0f), one = splat(1.0f);
   V sphereUpper =
       sphere.cosT >= sphere.cosA ? one : sphere.cosT * sphere.cosA + sphere.sinT * sphere.sinA;
   sphereUpper = sphere.inside ? one : sphereUpper;
-
-  // The largest cosine over the box itself, then widened by the spread γ of the region's
-  // normals about their axis: cos(max(θ − γ, 0)).
   V m[3];
   for (int c = 0; c < 3; ++c) m[c] = vmax(g.axis[c] * dMin[c], g.axis[c] * dMax[c]);
   const V num = m[0] + m[1] + m[2];
@@ -157,10 +139,14 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
     const V s = vsqrt(1.0f - c * c);
     cosUp = s <= g.sinSpread ? one : c * g.cosSpread + s * g.sinSpread;
   }
+  return cosUp;
+}
 
-  // Whether some light of a spot node may shine on some point of the region: its cone (axis,
-  // cos θ in w2, sin θ) widened by the angular radius of the node's and the region's
-  // bounding spheres together.
+// Whether some light of a spot node may shine on some point of the region: its cone (axis,
+// cos θ in w2, sin θ) widened by the angular radius of the node's and the region's bounding
+// spheres together.
+MANYLIGHT_INLINE inline Mask spotReachesLanes(const RegionTerms& r, const NodeLanes& in, int l) {
+  const V zero = splat(0.0f);
   V boxCentre[3], boxExtent[3], toP[3];
   for (int c = 0; c < 3; ++c) {
     const V bMin = load(in.boxMin[c] + l), bMax = load(in.boxMax[c] + l);
@@ -179,9 +165,40 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   const V cosSum = spotCos * cosR - spotSin * sinR;
   V axis[3];
   for (int c = 0; c < 3; ++c) axis[c] = load(in.axis[c] + l);
-  const auto spotReaches = d <= reach || sinSum < 0.0f ||
-                           (axis[0] * toP[0] + axis[1] * toP[1] + axis[2] * toP[2]) / d >= cosSum;
-  const auto lit = cosUp > 0.0f && (!spot || spotReaches);
+  return d <= reach || sinSum < 0.0f ||
+         (axis[0] * toP[0] + axis[1] * toP[1] + axis[2] * toP[2]) / d >= cosSum;
+}
+
+// Lanes [l, l + width of V) of `out`.
+MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLanes& in, int l,
+                                            BoundLanes& out) {
+  constexpr float kPi = 3.14159265358979323846f;
+  const ShadingRegion& g = r.g;
+  const V zero = splat(0.0f), one = splat(1.0f);
+  const V tree = load(in.tree + l);
+  const auto directional = tree == 0.0f, spot = tree == 2.0f;
+  const auto leaf = load(in.leaf + l) != 0.0f;
+  V intensity[3];
+  for (int c = 0; c < 3; ++c) intensity[c] = load(in.intensity[c] + l);
+  const V unit = unitLanes(r, in, l, directional, spot);
+  store(out.unit + l, unit);
+  for (int c = 0; c < 3; ++c) store(out.estimate[c] + l, intensity[c] * unit);
+
+  // The vectors from the region's points to the node's box (directional: its directions).
+  V dMin[3], dMax[3];
+  for (int c = 0; c < 3; ++c) {
+    const V bMin = load(in.boxMin[c] + l), bMax = load(in.boxMax[c] + l);
+    dMin[c] = directional ? bMin : bMin - g.pMax[c];
+    dMax[c] = directional ? bMax : bMax - g.pMin[c];
+  }
+  const VectorBox box = vectorBox(dMin, dMax);
+  const V d2Min = box.d2Min, d2Max = box.d2Max;
+  const auto touching = !directional && d2Min == 0.0f;  // unbounded
+  const V dist = vsqrt(d2Min);
+
+  const SphereAngles sphere = sphereAngles(g.axis, box);
+  const V cosUp = cosUpLanes(g, dMin, dMax, dist, sphere);
+  const auto lit = cosUp > 0.0f && (!spot || spotReachesLanes(r, in, l));
 
   // The node's upper (and under the total rule lower) bound per unit albedo.
   const V invRange2 = load(in.invRange2 + l), w2 = load(in.w2 + l);
@@ -211,7 +228,46 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   for (int c = 0; c < 3; ++c) store(out.error[c] + l, leaf || unbounded ? zero : error[c]);
 }
 
-// The far field's linearisation bound T per unit albedo and intensity (render/far_field.h)
+// A spot's cone over the region: the lowest and highest cosine between its axis and a
+// direction from the light to the region's bounding sphere (−1 and 1 from inside it), then
+// far_field.h's variation: the smoothstep's values t0, t1 there, its slope and curvature
+// where it varies, the largest sine to its axis there; a hard edge where its scale is not
+// finite.
+struct ConeVariation {
+  V scale, t0, t1, slope, curvature, sine;
+  Mask varies, hardEdge;
+};
+MANYLIGHT_INLINE inline ConeVariation coneVariation(const RegionTerms& r, const FoldLanes& in,
+                                                    int l, const V rep[3], const V axis[3]) {
+  const V zero = splat(0.0f), one = splat(1.0f);
+  V w[3];
+  for (int c = 0; c < 3; ++c) w[c] = r.centre[c] - rep[c];
+  const V d = vsqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  const auto insideCone = d <= r.halfDiagonal;
+  const V cosW = (axis[0] * w[0] + axis[1] * w[1] + axis[2] * w[2]) / d;
+  const V sinW = vsqrt(vmax(1.0f - cosW * cosW, zero));
+  const V sinB = r.halfDiagonal / d, cosB = vsqrt(vmax(1.0f - sinB * sinB, zero));
+  V low = sinW * cosB + cosW * sinB < 0.0f ? splat(-1.0f) : cosW * cosB - sinW * sinB;
+  V high = cosW >= cosB ? one : cosW * cosB + sinW * sinB;
+  low = insideCone ? splat(-1.0f) : low;
+  high = insideCone ? one : high;
+  ConeVariation v;
+  v.scale = load(in.coneScale + l);
+  const V offset = load(in.coneOffset + l);
+  v.t0 = clampLanes(v.scale * low + offset, 0.0f, 1.0f);
+  v.t1 = clampLanes(v.scale * high + offset, 0.0f, 1.0f);
+  v.varies = !(v.t1 <= 0.0f || v.t0 >= 1.0f);
+  v.slope = v.t0 <= 0.5f && v.t1 >= 0.5f
+                ? splat(1.5f)
+                : vmax(6.0f * v.t0 * (1.0f - v.t0), 6.0f * v.t1 * (1.0f - v.t1));
+  v.curvature = vmax(vabs(6.0f - 12.0f * v.t0), vabs(6.0f - 12.0f * v.t1));
+  const V cosine = vmax(low, load(in.repCos + l));
+  v.sine = cosine > 0.0f ? vsqrt(1.0f - cosine * cosine) : one;
+  v.hardEdge = !(vabs(v.scale) <= 3.40282347e+38f);
+  return v;
+}
+
+// The far field's linearisation bound T per unit albedo and intensity (cuts/far_field.h)
 // for lanes [l, l + width of V) of `in`, or −1 where the entry does not fold: a directional
 // or point light that does not light every point of the region from in front, a light whose
 // range sphere cuts the region (its window has a kink there), a spot with a hard edge, or a
@@ -245,31 +301,10 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
   const auto pointFront =
       d2Min > 0.0f && widenDown(vmax(boxLower(g.axis, box), sphereLower(sphere)), g) > 0.0f;
 
-  // A spot's cone over the region: the lowest and highest cosine between its axis and a
-  // direction from the light to the region's bounding sphere (−1 and 1 from inside it), then
-  // far_field.h's variation: the slope and curvature of its smoothstep where it varies, the
-  // largest sine to its axis there.
-  V w[3];
-  for (int c = 0; c < 3; ++c) w[c] = r.centre[c] - rep[c];
-  const V d = vsqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-  const auto insideCone = d <= r.halfDiagonal;
-  const V cosW = (axis[0] * w[0] + axis[1] * w[1] + axis[2] * w[2]) / d;
-  const V sinW = vsqrt(vmax(1.0f - cosW * cosW, zero));
-  const V sinB = r.halfDiagonal / d, cosB = vsqrt(vmax(1.0f - sinB * sinB, zero));
-  V low = sinW * cosB + cosW * sinB < 0.0f ? splat(-1.0f) : cosW * cosB - sinW * sinB;
-  V high = cosW >= cosB ? one : cosW * cosB + sinW * sinB;
-  low = insideCone ? splat(-1.0f) : low;
-  high = insideCone ? one : high;
-  const V scale = load(in.coneScale + l), offset = load(in.coneOffset + l);
-  const V t0 = clampLanes(scale * low + offset, 0.0f, 1.0f);
-  const V t1 = clampLanes(scale * high + offset, 0.0f, 1.0f);
-  const auto varies = !(t1 <= 0.0f || t0 >= 1.0f);
-  const V slope = t0 <= 0.5f && t1 >= 0.5f ? splat(1.5f)
-                                           : vmax(6.0f * t0 * (1.0f - t0), 6.0f * t1 * (1.0f - t1));
-  const V curvature = vmax(vabs(6.0f - 12.0f * t0), vabs(6.0f - 12.0f * t1));
-  const V cosine = vmax(low, load(in.repCos + l));
-  const V sine = cosine > 0.0f ? vsqrt(1.0f - cosine * cosine) : one;
-  const auto hardEdge = !(vabs(scale) <= 3.40282347e+38f);
+  const ConeVariation cone = coneVariation(r, in, l, rep, axis);
+  const V scale = cone.scale, t0 = cone.t0, t1 = cone.t1, slope = cone.slope;
+  const V curvature = cone.curvature, sine = cone.sine;
+  const auto varies = cone.varies, hardEdge = cone.hardEdge;
 
   // ‖D²f‖ (far_field.h), then T; the bound holds only where the whole region is within the
   // range (a·d⁺² < 1: no point of it beyond the window's kink).
@@ -308,7 +343,7 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
 }
 
 // Lanes [l, l + width of V) of `in`'s point and spot entries, those below `count`, added to
-// `sums`: per channel, the entry's f(c) and Df(c) times its intensity (render/far_field.h).
+// `sums`: per channel, the entry's f(c) and Df(c) times its intensity (cuts/far_field.h).
 MANYLIGHT_INLINE inline void farFieldLanes(glm::vec3 centre, const FarLanes& in, int count, int l,
                                            FarSums& sums) {
   const V zero = splat(0.0f);

@@ -1,5 +1,5 @@
 #pragma once
-// The shading points a shared cut must hold for (render/tile_cuts.h): a group of a square's
+// The shading points a shared cut must hold for (cuts/tile_cuts.h): a group of a square's
 // pixels, seen as the box of their positions and a cone around the mean of their normals;
 // and the split of a group whose normals spread wide into one group per surface. Where a
 // square straddles an edge or a silhouette (a cube's edge, a sphere against the wall behind

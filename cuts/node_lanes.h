@@ -1,13 +1,13 @@
 #pragma once
-// The CPU cut's node bounds and far field linearisation bounds (render/tile_cuts.cpp) for up
-// to kLanes nodes at once (render/node_lanes_kernel.h), written once over a lane type: one
+// The CPU cut's node bounds and far field linearisation bounds (cuts/cut_region.cpp) for up
+// to kLanes nodes at once (cuts/node_lanes_kernel.h), written once over a lane type: one
 // float or, on x86-64 CPUs with AVX2 (under GCC), eight in a register. Every lane takes every
 // branch and the results are selected, so the two give the same results bit for bit: the same IEEE
 // operations in the same order (no fused multiply-add, nothing reassociated; min and max
 // keep std::min and std::max's operand order).
 #include <glm/glm.hpp>
 
-#include "render/pixel_groups.h"
+#include "cuts/pixel_groups.h"
 
 // The lanes' helpers are inlined into each lane type's copy of the kernels.
 #if defined(__GNUC__)
@@ -64,7 +64,7 @@ void nodeBounds(const RegionTerms& region, const NodeLanes& in, int count, Bound
 bool wideNodeBounds();  // whether `wide` takes eight lanes at once here
 
 // Up to kLanes entries of a cut (their representatives' lights), one lane each, and their far
-// field linearisation bounds T (render/far_field.h) per unit albedo and intensity over the
+// field linearisation bounds T (cuts/far_field.h) per unit albedo and intensity over the
 // region, or where they do not fold −1, kZeroEntry (nothing at any point of the region), or
 // kFullCone (a spot whose cone lets all its light through to the whole region).
 inline constexpr float kZeroEntry = -2.0f, kFullCone = -3.0f;
@@ -77,7 +77,7 @@ struct FoldLanes {
 void foldBounds(const RegionTerms& region, const FoldLanes& in, int count, float t[kLanes],
                 bool wide = true);
 
-// Up to kLanes point or spot entries folded into a far field (render/far_field.h), and the
+// Up to kLanes point or spot entries folded into a far field (cuts/far_field.h), and the
 // sums of their terms per channel and lane: f(c) and Df(c) (by columns) times the intensity.
 struct FarLanes {
   float position[3][kLanes], invRange2[kLanes];

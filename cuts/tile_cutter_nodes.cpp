@@ -1,12 +1,12 @@
-// TileCutter's nodes (render/tile_cuts.h): the packed trees decoded once, each node with
+// TileCutter's nodes (cuts/tile_cuts.h): the packed trees decoded once, each node with
 // its representative's light beside it.
 #include <algorithm>
 #include <cstddef>
 
 #include "bake/light_pack.h"
 #include "bake/light_tree_layout.h"
-#include "render/node_lanes.h"
-#include "render/tile_cuts.h"
+#include "cuts/node_lanes.h"
+#include "cuts/tile_cuts.h"
 
 namespace manylight {
 

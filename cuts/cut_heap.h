@@ -1,5 +1,5 @@
 #pragma once
-// The shared cut's priority queue (render/tile_cuts.cpp): a max-heap of unique 64-bit keys.
+// The shared cut's priority queue (cuts/cut_region.cpp): a max-heap of unique 64-bit keys.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -8,9 +8,8 @@ namespace manylight::cut_heap {
 
 // std::push_heap and std::pop_heap on a max-heap of unique keys, step for step as libstdc++
 // does them (so the heap's layout, and with it the order of a cut's entries, is the same),
-// with the larger child chosen without a branch: that choice is a coin toss. Its
-// mispredictions took a fifth of the cut loop's samples; branchless, a 65,536-light frame's
-// branch misses fell by a third and its cut by about 5%.
+// with the larger child chosen without a branch: that choice is a coin toss, so a branch
+// on it is mispredicted about half the time.
 
 // Lets `value` rise from the hole at `hole` to its place (libstdc++'s __push_heap).
 inline void siftUp(std::uint64_t* h, std::size_t hole, std::uint64_t value) {

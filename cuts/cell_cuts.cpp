@@ -1,10 +1,10 @@
-#include "render/cell_cuts.h"
+#include "cuts/cell_cuts.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "render/threads.h"
+#include "cuts/threads.h"
 
 namespace manylight {
 
@@ -62,6 +62,23 @@ float cellSizeOf(const GBufferPixels& px) {
 bool holds(const ShadingRegion& g, glm::vec3 p, glm::vec3 n) {
   return p.x >= g.pMin.x && p.y >= g.pMin.y && p.z >= g.pMin.z && p.x <= g.pMax.x &&
          p.y <= g.pMax.y && p.z <= g.pMax.z && glm::dot(n, g.axis) >= g.cosSpread;
+}
+
+// Sets the region's box to the points' box lo…hi, widened by kGrow of the cube's edge (within
+// the cube of that edge at `corner`) along each axis on which the points spread, and padded
+// for round-off.
+void setBox(ShadingRegion& r, glm::vec3 lo, glm::vec3 hi, float edge, glm::vec3 corner) {
+  for (int a = 0; a < 3; ++a) {
+    if (hi[a] - lo[a] > 0.02f * edge) {
+      lo[a] = std::max(lo[a] - kGrow * edge, std::min(lo[a], corner[a]));
+      hi[a] = std::min(hi[a] + kGrow * edge, std::max(hi[a], corner[a] + edge));
+    }
+    const float pad = 1e-3f * edge + 1e-6f * std::max(std::abs(lo[a]), std::abs(hi[a]));
+    lo[a] -= pad;
+    hi[a] += pad;
+  }
+  r.pMin = lo;
+  r.pMax = hi;
 }
 
 }  // namespace
@@ -175,19 +192,7 @@ std::vector<int> CellCuts::grow(const GBufferPixels& px, const std::vector<int>&
       hi = glm::max(hi, r.pMax);
     }
     const std::uint64_t key = keys_[std::size_t(grown[k])];
-    const float edge = edgeOf(key);
-    const glm::vec3 corner = cornerOf(key);
-    for (int a = 0; a < 3; ++a) {
-      if (hi[a] - lo[a] > 0.02f * edge) {
-        lo[a] = std::max(lo[a] - kGrow * edge, std::min(lo[a], corner[a]));
-        hi[a] = std::min(hi[a] + kGrow * edge, std::max(hi[a], corner[a] + edge));
-      }
-      const float pad = 1e-3f * edge + 1e-6f * std::max(std::abs(lo[a]), std::abs(hi[a]));
-      lo[a] -= pad;
-      hi[a] += pad;
-    }
-    r.pMin = lo;
-    r.pMax = hi;
+    setBox(r, lo, hi, edgeOf(key), cornerOf(key));
     cell.empty = false;
   }
   std::sort(grown.begin(), grown.end());
@@ -247,28 +252,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     }
     const std::vector<int> grown = grow(px, cellOfPixel, outside);
     for (const std::size_t i : pending) outside[i] = 0;
-    // Under the node rule cells split (or fall back to the frame's squares) where their cut
-    // exceeds kSplitCut, as the frame's groups larger than the finest do.
-    CutRule cellRule = rule;
-    if (!rule.total) cellRule.maxCut = std::min(rule.maxCut, kSplitCut);
-    const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));
-    std::vector<long long> bounds(std::size_t(workers), 0);
-    auto work = [&](int t) {
-      for (std::size_t k = std::size_t(t); k < grown.size(); k += std::size_t(workers)) {
-        Cell& cell = cells_[std::size_t(grown[k])];
-        cell.entries.clear();
-        cell.cut = cutter_.cutRegion(cell.region, cellRule, true, cell.entries);
-        cell.perPixel = cell.cut.perPixel;
-        cell.split = cell.perPixel && level < kMaxCellLevel;
-        if (cell.perPixel) cell.entries.clear();
-        cell.entries.shrink_to_fit();
-        bounds[std::size_t(t)] += cell.cut.bounds;
-      }
-    };
-    for (const int c : grown) words_ -= cells_[std::size_t(c)].entries.size();
-    onThreads(workers, work);
-    for (const int c : grown) words_ += cells_[std::size_t(c)].entries.size();
-    for (const long long b : bounds) out.boundEvaluations += b;
+    out.boundEvaluations += cutCells(grown, rule, threads, level);
     grownAll.insert(grownAll.end(), grown.begin(), grown.end());
     for (const std::size_t i : pending) {
       const int c = cellOfPixel[i];
@@ -280,7 +264,43 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     std::sort(later.begin(), later.end());
     pending.swap(later);
   }
+  frameCuts(px, rule, threads, cellOfPixel, grownAll, out);
+  return out;
+}
 
+long long CellCuts::cutCells(const std::vector<int>& grown, const CutRule& rule, int threads,
+                             int level) {
+  // Under the node rule cells split (or fall back to the frame's squares) where their cut
+  // exceeds kSplitCut, as the frame's groups larger than the finest do.
+  CutRule cellRule = rule;
+  if (!rule.total) cellRule.maxCut = std::min(rule.maxCut, kSplitCut);
+  const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));
+  std::vector<long long> bounds(std::size_t(workers), 0);
+  auto work = [&](int t) {
+    CutWorkspace workspace;
+    for (std::size_t k = std::size_t(t); k < grown.size(); k += std::size_t(workers)) {
+      Cell& cell = cells_[std::size_t(grown[k])];
+      cell.entries.clear();
+      cell.cut = cutter_.cutRegion(workspace, cell.region, cellRule, true, cell.entries);
+      cell.perPixel = cell.cut.perPixel;
+      cell.split = cell.perPixel && level < kMaxCellLevel;
+      if (cell.perPixel) cell.entries.clear();
+      cell.entries.shrink_to_fit();
+      bounds[std::size_t(t)] += cell.cut.bounds;
+    }
+  };
+  for (const int c : grown) words_ -= cells_[std::size_t(c)].entries.size();
+  onThreads(workers, work);
+  for (const int c : grown) words_ += cells_[std::size_t(c)].entries.size();
+  long long sum = 0;
+  for (const long long b : bounds) sum += b;
+  return sum;
+}
+
+void CellCuts::frameCuts(const GBufferPixels& px, const CutRule& rule, int threads,
+                         const std::vector<int>& cellOfPixel, const std::vector<int>& grownAll,
+                         TileCuts& out) {
+  const std::size_t n = cellOfPixel.size();
   // The frame's cuts: its cells' in the order the pixels first use them, then, for the
   // pixels of cells whose cut is full, squares' cuts as TileCutter::cut finds them (split by
   // surface and into quarters as needed), this frame only.
@@ -316,10 +336,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   std::size_t next = 2 * cuts;
   for (std::size_t u = 0; u < frameCells_.size(); ++u) {
     const Cell& cell = cells_[std::size_t(frameCells_[u])];
-    cell.cut.writeHeader(std::uint32_t(next), out.texels.data() + 8 * u);
-    std::copy(cell.entries.begin(), cell.entries.end(),
-              out.texels.begin() + std::ptrdiff_t(next * 4));
-    next += cell.entries.size() / 4;
+    cell.cut.writeTexels(u, cell.entries.data(), cell.entries.size() / 4, next, out.texels.data());
   }
   // The squares' headers, their first entries moved past the cells' entries.
   std::uint32_t* head = out.texels.data() + 8 * frameCells_.size();
@@ -338,7 +355,6 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   out.surfaceSplits = squares.surfaceSplits;
   out.boundEvaluations += squares.boundEvaluations;
   out.made = int(grownAll.size()) + squares.made;
-  return out;
 }
 
 }  // namespace manylight

@@ -1,4 +1,4 @@
-#include "render/pixel_groups.h"
+#include "cuts/pixel_groups.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,221 @@
+// The frame's shared cuts (cuts/tile_cuts.h): squares of pixels, their seeds, the splits of
+// groups whose cuts fill up, and the texels of all the cuts; TileCutter::cutRegion (in
+// cut_region.cpp) finds each group's cut.
+#include <algorithm>
+#include <atomic>
+#include <memory>
+
+#include "bake/light_tree_layout.h"
+#include "cuts/threads.h"
+#include "cuts/tile_cuts.h"
+
+namespace manylight {
+
+namespace {
+
+// Under the total rule, a square whose cut filled up is split into quarters only if the
+// cut's summed bound was within this factor of the rule's target.
+constexpr float kSplitShortfall = 8.0f;
+
+// One thread's cuts (numbered in order; cutOfPixel holds these numbers until the merge) and
+// their entries.
+struct Part {
+  std::vector<RegionCut> cuts;
+  std::vector<std::size_t> entry;  // each cut's first word in `entries`
+  std::vector<std::uint32_t> entries;
+  long long bounds = 0;  // split groups' too
+  int perPixel = 0, splits = 0;
+};
+
+// A group of a square's covered pixels (indices y · width + x), and the seed its cut
+// starts from.
+struct Group {
+  int x0, y0, size;
+  std::vector<int> pixels;
+  std::shared_ptr<const CutSeed> seed;
+};
+
+// Splits `group` into its quarters, which start from `seed`.
+void quarters(const GBufferPixels& px, const Group& group, std::vector<Group>& todo,
+              const std::shared_ptr<const CutSeed>& seed) {
+  const int h = group.size / 2;
+  Group quarter[4];
+  for (int q = 0; q < 4; ++q)
+    quarter[q] = {group.x0 + (q & 1) * h, group.y0 + (q >> 1) * h, h, {}, seed};
+  for (const int i : group.pixels) {
+    const int x = i % px.width, y = i / px.width;
+    quarter[(x >= group.x0 + h ? 1 : 0) + (y >= group.y0 + h ? 2 : 0)].pixels.push_back(i);
+  }
+  for (Group& q : quarter) {
+    if (!q.pixels.empty()) todo.push_back(std::move(q));
+  }
+}
+
+// Splits `group` into its two surfaces (cuts/pixel_groups.h), which start from its seed.
+bool surfaces(const GBufferPixels& px, const Group& group, const ShadingRegion& g,
+              std::vector<Group>& todo) {
+  Group a{group.x0, group.y0, group.size, {}, group.seed}, b = a;
+  if (!splitByNormal(px, group.pixels, g, a.pixels, b.pixels)) return false;
+  todo.push_back(std::move(a));
+  todo.push_back(std::move(b));
+  return true;
+}
+
+// The covered pixels of the square of `top` pixels at (x0, y0) that share cuts (and are
+// marked in `only`, when given).
+Group squareAt(const GBufferPixels& px, int x0, int y0, int top,
+               const std::vector<std::uint8_t>* only) {
+  Group first{x0, y0, top, {}, nullptr};
+  for (int y = y0; y < std::min(y0 + top, px.height); ++y) {
+    for (int x = x0; x < std::min(x0 + top, px.width); ++x) {
+      const std::size_t i = std::size_t(y) * px.width + x;
+      if ((!only || (*only)[i]) && sharesCuts(px, i)) first.pixels.push_back(int(i));
+    }
+  }
+  return first;
+}
+
+}  // namespace
+
+std::size_t RegionCut::entryTexels() const {
+  return std::size_t(2 * (counts[0] + counts[1]) + 3 * counts[2] +
+                     (folded > 0 ? kFarFieldTexels : 0));
+}
+
+void RegionCut::writeHeader(std::uint32_t firstEntryTexel, std::uint32_t* words) const {
+  const std::uint32_t header[8] = {
+      firstEntryTexel,          std::uint32_t(counts[0]),
+      std::uint32_t(counts[1]), std::uint32_t(counts[2]),
+      layout::wordOf(check.x),  layout::wordOf(check.y),
+      layout::wordOf(check.z),  std::uint32_t(folded) | std::uint32_t(zeros) << 16};
+  std::copy_n(header, 8, words);
+}
+
+void RegionCut::writeTexels(std::size_t cut, const std::uint32_t* words, std::size_t count,
+                            std::size_t& next, std::uint32_t* texels) const {
+  writeHeader(std::uint32_t(next), texels + 8 * cut);
+  std::copy_n(words, count * 4, texels + next * 4);
+  next += count;
+}
+
+// Cuts `square` and the groups it splits into, on one thread: the shared cuts go to `part`,
+// each pixel's cut number (within the part) to `cutOfPixel`.
+static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBufferPixels& px,
+                      Group square, int tileSize, const CutRule& rule, Part& part,
+                      std::vector<std::uint32_t>& cutOfPixel) {
+  const int fine = std::min(kFinestTile, tileSize);
+  std::vector<Group> todo;
+  std::vector<std::uint32_t> unused;
+  if (!square.pixels.empty()) todo.push_back(std::move(square));
+  while (!todo.empty()) {
+    Group group = std::move(todo.back());
+    todo.pop_back();
+    ShadingRegion g;
+    const bool cone = shadingRegion(px, group.pixels, g);
+    // Normals over 90° apart leave no cosine bound: split without trying.
+    const bool tried = cone && g.cosSpread >= 0.0f;
+    if (group.size > tileSize) {  // a seed for the quarters
+      if (tried) {
+        auto next = std::make_shared<CutSeed>();
+        const RegionCut r =
+            cutter.cutRegion(work, g, rule, false, unused, group.seed.get(), next.get());
+        part.bounds += r.bounds;
+        // A full cut is a start too: a quarter whose cut then fills up starts over below.
+        quarters(px, group, todo, next);
+        continue;
+      }
+      if (!surfaces(px, group, g, todo)) quarters(px, group, todo, group.seed);
+      continue;
+    }
+    RegionCut result;
+    const std::size_t entry = part.entries.size();
+    if (tried) {
+      result = cutter.cutRegion(work, g, rule, group.size <= fine, part.entries, group.seed.get());
+      part.bounds += result.bounds;
+      if (result.perPixel && group.seed) {  // the seed's cut was too fine here: start over
+        group.seed = nullptr;
+        result = cutter.cutRegion(work, g, rule, group.size <= fine, part.entries);
+        part.bounds += result.bounds;
+      }
+    }
+    if (tried && !result.perPixel) {
+      for (const int i : group.pixels) cutOfPixel[std::size_t(i)] = std::uint32_t(part.cuts.size());
+      part.cuts.push_back(result);
+      part.entry.push_back(entry);
+      continue;
+    }
+    part.entries.resize(entry);
+    if ((!cone || g.cosSpread < kSurfaceSpread) && surfaces(px, group, g, todo)) {
+      ++part.splits;
+      continue;
+    }
+    // Smaller squares have tighter bounds: try the quarters. Under the total rule, a cut
+    // that filled up far from its target fills up in the quarters too (its bounds add up
+    // over the whole cut); under the node rule the culprit is mostly a light near one
+    // corner, which a quarter leaves out.
+    if (cone && group.size > fine && (!rule.total || result.shortfall < kSplitShortfall)) {
+      quarters(px, group, todo, group.seed);
+      continue;
+    }
+    ++part.perPixel;
+  }
+}
+
+TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& rule, int threads,
+                         const std::vector<std::uint8_t>* only) const {
+  TileCuts out;
+  out.cutOfPixel.assign(std::size_t(px.width) * px.height, kNoSharedCut);
+  // Squares of `top` pixels find seed cuts for their quarters, down to squares of tileSize.
+  const int top = tileSize << kSeedLevels;
+  const int coarseX = (px.width + top - 1) / top;
+  const int coarse = coarseX * ((px.height + top - 1) / top);
+  threads = std::clamp(threads, 1, std::max(coarse, 1));
+  std::vector<Part> parts(static_cast<std::size_t>(threads));
+  // Each thread takes the next square not yet taken: their costs differ tenfold, so squares
+  // dealt out in turn would leave one thread behind the others. partOf[t] says whose square
+  // t was; the merge below renumbers each pixel's cut by it.
+  std::atomic<int> nextSquare{0};
+  std::vector<int> partOf(std::size_t(coarse), 0);
+  auto work = [&](int index) {
+    CutWorkspace workspace;
+    for (int t; (t = nextSquare.fetch_add(1, std::memory_order_relaxed)) < coarse;) {
+      partOf[std::size_t(t)] = index;
+      cutSquare(*this, workspace, px,
+                squareAt(px, (t % coarseX) * top, (t / coarseX) * top, top, only), tileSize, rule,
+                parts[std::size_t(index)], out.cutOfPixel);
+    }
+  };
+  onThreads(threads, work);
+
+  // Number the cuts part after part, and lay out headers, then entries.
+  std::vector<std::uint32_t> firstCut(parts.size(), 0);
+  std::size_t cuts = 0, entryTexels = 0;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    firstCut[k] = std::uint32_t(cuts);
+    cuts += parts[k].cuts.size();
+    entryTexels += parts[k].entries.size() / 4;
+    out.boundEvaluations += parts[k].bounds;
+    out.perPixelGroups += parts[k].perPixel;
+    out.surfaceSplits += parts[k].splits;
+  }
+  out.sharedCuts = int(cuts);
+  out.made = out.sharedCuts + out.perPixelGroups;
+  for (std::size_t i = 0; i < out.cutOfPixel.size(); ++i) {
+    std::uint32_t& c = out.cutOfPixel[i];
+    if (c == kNoSharedCut) continue;
+    const int x = int(i % std::size_t(px.width)), y = int(i / std::size_t(px.width));
+    c += firstCut[std::size_t(partOf[std::size_t((y / top) * coarseX + x / top)])];
+  }
+  out.texels.assign((2 * cuts + entryTexels) * 4, 0u);
+  std::size_t next = 2 * cuts, cut = 0;
+  for (const Part& part : parts) {
+    for (std::size_t k = 0; k < part.cuts.size(); ++k, ++cut) {
+      const RegionCut& r = part.cuts[k];
+      r.writeTexels(cut, part.entries.data() + part.entry[k], r.entryTexels(), next,
+                    out.texels.data());
+    }
+  }
+  return out;
+}
+
+}  // namespace manylight
