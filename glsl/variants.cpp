@@ -2,9 +2,11 @@
 
 #include <cstdio>
 
+#include "bake/light_texture_layout.h"
 #include "bake/light_tree_layout.h"
 #include "render/far_field.h"
 #include "render/tile_cuts.h"
+#include "scene/shading_model.h"
 
 namespace manylight::glsl {
 namespace {
@@ -27,6 +29,15 @@ std::vector<std::vector<std::string>> lightcutsVariants() {
     out.push_back(lightcutsDefines(base | kLightcutsTileCuts | kLightcutsSharedPass));
     out.push_back(lightcutsDefines(base | kLightcutsOwnPass));
   }
+  return out;
+}
+
+// `value` as a GLSL float literal that reads back as the same float.
+std::string floatLiteral(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", double(float(value)));
+  std::string out = text;
+  if (out.find_first_of(".e") == std::string::npos) out += ".0";
   return out;
 }
 
@@ -70,12 +81,15 @@ std::vector<ProgramVariants> programs() {
 }
 
 std::string layoutPrelude() {
-  char floor[32];
-  std::snprintf(floor, sizeof floor, "%.9g", double(kAbsoluteFloor));
   std::string out;
+  out += constLine("float", "kPi", floatLiteral(shading::kPi));
+  out += constLine("float", "kMinDistanceSquared", floatLiteral(shading::kMinDistanceSquared));
+  out += constLine("float", "kDielectricF0", floatLiteral(shading::kDielectricF0));
+  out += constLine("float", "kMaxPhongExponent", floatLiteral(shading::kMaxPhongExponent));
+  out += constLine("int", "kTexelsPerLight", std::to_string(layout::kTexelsPerLight));
   out += constLine("int", "kFarFieldTexels", std::to_string(kFarFieldTexels));
   out += constLine("uint", "kNoSharedCut", std::to_string(kNoSharedCut) + "u");
-  out += constLine("float", "kAbsoluteFloor", floor);
+  out += constLine("float", "kAbsoluteFloor", floatLiteral(kAbsoluteFloor));
   out += constLine("int", "kNodeWords", std::to_string(layout::kNodeWords));
   out += constLine("int", "kSpotNodeWords", std::to_string(layout::kSpotNodeWords));
   out += constLine("int", "kCutStatsOwnCut", std::to_string(kCutStatsOwnCut));

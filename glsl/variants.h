@@ -53,8 +53,9 @@ struct ProgramVariants {
 // Every program the renderer builds, with every variant it uses.
 std::vector<ProgramVariants> programs();
 
-// The GLSL `const` lines of the layout constants (render/far_field.h, render/tile_cuts.h,
-// bake/light_tree_layout.h, CutStatsKind), the first part of the stages that use them.
+// The GLSL `const` lines of the constants GLSL shares with C++ (scene/shading_model.h,
+// bake/light_texture_layout.h, bake/light_tree_layout.h, render/far_field.h,
+// render/tile_cuts.h, CutStatsKind): the first part of the G-buffer and lighting stages.
 std::string layoutPrelude();
 
 }  // namespace manylight::glsl
