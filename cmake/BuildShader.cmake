@@ -1,5 +1,7 @@
 # Script mode: assembles one shader stage from its parts and validates it with glslangValidator.
-#   -DOUT=<file.vert|file.frag> -DPARTS=<a.glsl|b.glsl> -DVARIANTS=<"A=1 B=1|C=1"> -DVALIDATOR=<exe>
+#   -DOUT=<file.vert|file.frag> -DPARTS=<a.glsl|b.glsl> -DVARIANTS_FILE=<file> -DVALIDATOR=<exe>
+# VARIANTS_FILE (written from glsl/variants.h) holds a variant per line: its defines separated
+# by spaces, or NONE.
 # The assembled text starts with "#version 330 core"; at run time the C++ side inserts its
 # #define lines right after it. Every variant (a set of defines) is validated, so a broken
 # shader fails the build rather than a user's render.
@@ -11,10 +13,10 @@ foreach(part IN LISTS part_list)
 endforeach()
 file(WRITE "${OUT}.tmp" "${text}")
 
-if(VARIANTS STREQUAL "")
-  set(VARIANTS "NONE")
+file(STRINGS "${VARIANTS_FILE}" variant_list)
+if(NOT variant_list)
+  set(variant_list "NONE")
 endif()
-string(REPLACE "|" ";" variant_list "${VARIANTS}")
 foreach(variant IN LISTS variant_list)
   set(define_args "")
   if(NOT variant STREQUAL "NONE")

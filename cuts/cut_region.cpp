@@ -14,7 +14,6 @@ namespace manylight {
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
-constexpr float kAbsoluteFloor = 1e-6f;  // glsl/lighting_lightcuts.frag
 // The CPU stops refining once the rule holds against its estimate at the tile's centre
 // times this margin, so that most pixels, whose estimates differ from the centre's, pass
 // their own check.

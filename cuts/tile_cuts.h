@@ -100,6 +100,9 @@ struct TileCuts {
 };
 
 inline constexpr std::uint32_t kNoSharedCut = 0xffffffffu;
+// Both rules hold on a pixel whose bound is at most this (near-black pixels), on the CPU and
+// in glsl/lighting_lightcuts.frag.
+inline constexpr float kAbsoluteFloor = 1e-6f;
 
 // One group's cut, as TileCutter::cutRegion finds it; its entries are written apart.
 struct RegionCut {

@@ -47,9 +47,6 @@ out vec4 gAlbedo;    // rgb Lambert albedo, w alpha (what render/blend_pass.cpp 
 out vec4 gSpecular;  // rgb Phong specular colour
 out vec4 gRadiance;  // rgb ambient · (albedo + specular) · occlusion + emissive, w coverage
 
-const float kDielectricF0 = 0.04;
-const float kMaxPhongExponent = 8192.0;
-
 vec4 sampleSlot(TextureSlot slot, sampler2D tex) {
   vec2 uv = slot.secondSet ? vTexcoord1 : vTexcoord0;
   return texture(tex, (slot.transform * vec3(uv, 1.0)).xy);

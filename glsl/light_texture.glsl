@@ -11,8 +11,8 @@ uniform int uSpotStart;
 
 // Irradiance from directional light i, and the unit vector l towards it.
 vec3 directionalIrradiance(int i, vec3 n, out vec3 l) {
-  vec4 a = texelFetch(uLights, 3 * i);
-  vec4 c = texelFetch(uLights, 3 * i + 2);
+  vec4 a = texelFetch(uLights, kTexelsPerLight * i);
+  vec4 c = texelFetch(uLights, kTexelsPerLight * i + 2);
   l = a.xyz;
   return c.rgb * max(dot(n, l), 0.0);
 }
@@ -30,8 +30,8 @@ float pointFalloff(vec4 a, vec3 p, vec3 n, out vec3 l) {
 
 // Irradiance at p from point light i, and l.
 vec3 pointIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
-  vec4 a = texelFetch(uLights, 3 * i);
-  vec4 c = texelFetch(uLights, 3 * i + 2);
+  vec4 a = texelFetch(uLights, kTexelsPerLight * i);
+  vec4 c = texelFetch(uLights, kTexelsPerLight * i + 2);
   return c.rgb * pointFalloff(a, p, n, l);
 }
 
@@ -50,21 +50,21 @@ vec3 spotTexelsIrradiance(vec4 a, vec4 b, vec4 c, vec3 p, vec3 n, out vec3 l) {
 
 // Irradiance at p from spot light i.
 vec3 spotIrradiance(int i, vec3 p, vec3 n, out vec3 l) {
-  return spotTexelsIrradiance(texelFetch(uLights, 3 * i), texelFetch(uLights, 3 * i + 1),
-                              texelFetch(uLights, 3 * i + 2), p, n, l);
+  return spotTexelsIrradiance(texelFetch(uLights, kTexelsPerLight * i), texelFetch(uLights, kTexelsPerLight * i + 1),
+                              texelFetch(uLights, kTexelsPerLight * i + 2), p, n, l);
 }
 
 // Irradiance per unit colour · intensity at p from light i of type `type` (0 directional,
 // 1 point, 2 spot), and l: what a light tree node's intensity multiplies.
 float unitIrradiance(int type, int i, vec3 p, vec3 n, out vec3 l) {
-  vec4 a = texelFetch(uLights, 3 * i);
+  vec4 a = texelFetch(uLights, kTexelsPerLight * i);
   if (type == 0) {
     l = a.xyz;
     return max(dot(n, l), 0.0);
   }
   float f = pointFalloff(a, p, n, l);
   if (type == 2 && f > 0.0) {
-    f *= spotCone(texelFetch(uLights, 3 * i + 1), texelFetch(uLights, 3 * i + 2).w, l);
+    f *= spotCone(texelFetch(uLights, kTexelsPerLight * i + 1), texelFetch(uLights, kTexelsPerLight * i + 2).w, l);
   }
   return f;
 }

@@ -35,7 +35,7 @@ vec3 decodeIntensity(uint w) {
 }
 
 Node fetchNode(int tree, int i) {
-  int word = uTreeBase[tree] + (tree == 2 ? 14 : 10) * i;
+  int word = uTreeBase[tree] + (tree == 2 ? kSpotNodeWords : kNodeWords) * i;
   int t = word >> 2;
   uvec4 a = texelFetch(uNodes, t);
   uvec4 b = texelFetch(uNodes, t + 1);

@@ -26,8 +26,7 @@
 //     channel (or the floor).
 // How the cut is found: the paper keeps the cut in a priority queue and refines the node
 // with the largest bound first. On llvmpipe a per-pixel array costs time in proportion to
-// its capacity on every dynamic access (measured: the same 224-node cuts took 18 s with
-// 512 entries, 35 s with 1,024, at 640×480), so instead each pass walks the implicit tree
+// its capacity on every dynamic access, so instead each pass walks the implicit tree
 // depth first without any stack, refining every node whose measure exceeds a threshold;
 // passes tighten the threshold until the rule holds (see nodeRuleCut and totalRuleCut).
 // The end condition is the rule itself; only the order of refinement differs, which
@@ -50,12 +49,11 @@ uniform float uInfluence; // DISTANCE: radius of influence per half diagonal
 uniform vec2 uColourSlack;  // η and ζ of the node colour coding
 
 layout(location = 0) out vec4 oRadiance;
-// x: cut size, y: light evaluations, z: node bound evaluations, w: 1, or 2 where the cut hit
-// uMaxCut, 3 where the pixel took its group's shared cut (0 stays on background pixels).
+// x: cut size, y: light evaluations, z: node bound evaluations, w: glsl/variants.h's
+// CutStatsKind (0 stays on background pixels).
 layout(location = 1) out vec4 oCutStats;
 
 const float kUnbounded = 3.0e38;
-const float kAbsoluteFloor = 1e-6;
 
 Surface s;
 
@@ -317,9 +315,8 @@ const float kStep = 32.0;
 // pass refines against max(kUndershoot · ε × the previous estimate, the previous threshold
 // / kStep) and stops once the largest upper bound in its cut is ≤ ε × its own estimate.
 // Refining to ε × the previous estimate exactly, the rule often failed by a little against
-// the pass's own estimate and a further pass of full size followed: at 0.8, the per-pixel
-// cuts of 65,536 mixed lights take 1,136 node bounds a pixel instead of 1,598, for cuts of
-// 447 nodes instead of 399 (measured from 0.6 to 1.0; 0.8 is the least work).
+// the pass's own estimate and a further pass of full size followed; undershooting to 0.8 ε
+// trades slightly larger cuts for fewer passes (the least node bounds over 0.6 to 1.0).
 const float kUndershoot = 0.8;
 void nodeRuleCut() {
   cutPass(kUnbounded * 0.5, 0);  // the roots (and unbounded nodes below them)
@@ -395,7 +392,7 @@ vec3 farField(int k) {
 
 bool tileCut() {
   uint c = texelFetch(uCutOfPixel, ivec2(gl_FragCoord.xy), 0).r;
-  if (c == 0xffffffffu) return false;  // kNoSharedCut
+  if (c == kNoSharedCut) return false;
   uvec4 head = texelFetch(uTileCuts, 2 * int(c));
   uvec4 check = texelFetch(uTileCuts, 2 * int(c) + 1);
   vec3 bound = s.albedo * uintBitsToFloat(check.xyz);
@@ -407,7 +404,7 @@ bool tileCut() {
   int first = int(head.x);
   if (folded > 0) {
     sum = farField(first);
-    first += 13;  // kFarFieldTexels
+    first += kFarFieldTexels;
   }
   EMBEDDED_SUM(first, counts.x, DIRECTIONAL_T);
   first += 2 * counts.x;
@@ -436,9 +433,7 @@ bool tileCut() {
 // the pixels that take their group's cut; the others are discarded, keeping the stencil
 // value that sends them to OWN_PASS, which walks their own cuts (the stencil test drops the
 // rest before the shader runs). The shared pass's shader then holds no walk, and no block of
-// pixels waits on a neighbour's walk: at 65,536 mixed lights and 640x480 (about 700 pixels
-// walking), the lighting took 79-80 ms in one pass and 67-68 ms in two (each the best of
-// five repeats within a frame).
+// pixels waits on a neighbour's walk.
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 normal = texelFetch(uNormal, px, 0);
@@ -479,5 +474,6 @@ void main() {
 #endif
   oRadiance = vec4(estimateSum, 0.0);
   oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations),
-                   tookTileCut ? 3.0 : atMax ? 2.0 : 1.0);
+                   tookTileCut ? float(kCutStatsSharedCut)
+                   : atMax ? float(kCutStatsOwnCutAtMax) : float(kCutStatsOwnCut));
 }

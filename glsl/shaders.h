@@ -1,6 +1,7 @@
 #pragma once
-// The shader stages of glsl/, validated by glslangValidator at build time and embedded into
-// the binary (see glsl/CMakeLists.txt), so nothing is looked up on disk at run time.
+// The shader stages of glsl/, validated by glslangValidator at build time for every variant
+// glsl/variants.h lists and embedded into the binary (glsl/CMakeLists.txt), so nothing is
+// looked up on disk at run time.
 #include <string_view>
 
 namespace manylight::glsl {

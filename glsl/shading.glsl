@@ -1,7 +1,4 @@
-
 // The shading model of scene/shading_model.h (read that file first).
-const float kPi = 3.14159265358979323846;
-const float kMinDistanceSquared = 1e-12;
 
 // Unit normal N, view vector V (towards the eye), Phong exponent and colours of a pixel,
 // as the G-buffer holds them.

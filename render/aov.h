@@ -18,8 +18,7 @@ struct AovChannel {
   ImageValues values;  // colours go through the sRGB curve in a PNG, data do not
 };
 
-// Every channel but Aov::None. glsl/CMakeLists.txt reads the defines (the quoted AOV_ names)
-// from these lines and validates each variant.
+// Every channel but Aov::None; glsl/variants.h lists each one's G-buffer variant.
 inline constexpr AovChannel kAovChannels[] = {
     {Aov::BaseColour, "base-colour", "AOV_BASE_COLOUR", ImageValues::Colour},
     {Aov::Metallic, "metallic", "AOV_METALLIC", ImageValues::Data},

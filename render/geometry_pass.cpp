@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/context.h"
+#include "glsl/variants.h"
 
 namespace manylight {
 
@@ -25,7 +26,7 @@ constexpr float kPointSize = 1.0f;
 
 GeometryPass::GeometryPass(Aov aov)
     : aov_(aov),
-      program_(gl::cachedProgram("gbuffer.vert", "gbuffer.frag", aovDefines(aov),
+      program_(gl::cachedProgram("gbuffer.vert", "gbuffer.frag", glsl::gbufferDefines(aov),
                                  {"gPosition", "gNormal", "gAlbedo", "gSpecular", "gRadiance"})) {
   const gl::Program& p = program_;
   viewProjection_ = p.uniform("uViewProjection");

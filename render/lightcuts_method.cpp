@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "gl/context.h"
+#include "glsl/variants.h"
 #include "render/lighting_inputs.h"
 
 namespace manylight {
@@ -72,11 +73,11 @@ const gl::Program& LightcutsMethod::program(const std::vector<std::string>& defi
 void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
                             const LightcutsSettings& settings) const {
   const int maxCut = std::clamp(settings.maxCut, 1, kMaxCutLimit);
-  std::vector<std::string> defines;
-  if (distance_) defines.push_back("DISTANCE");
-  if (scene.hasSpecular()) defines.push_back("HAS_SPECULAR");
   const NodeColourCoder& colour = layout_.colour;
-  if (colour.coding() == NodeColourCoding::Fitted) defines.push_back("FITTED_COLOUR");
+  const unsigned flags =
+      (distance_ ? glsl::kLightcutsDistance : 0u) |
+      (scene.hasSpecular() ? glsl::kLightcutsHasSpecular : 0u) |
+      (colour.coding() == NodeColourCoding::Fitted ? glsl::kLightcutsFittedColour : 0u);
   const int tileSize = distance_ ? 1 : std::max(settings.tileSize, 1);
   if (tileSize > 1) {
     cutTiles(gbuffer, settings, tileSize);
@@ -88,11 +89,9 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   const float zero[4] = {0, 0, 0, 0};
   glClearBufferfv(GL_COLOR, 1, zero);
-  // One lighting pass with `extra` defines; `tileCuts`: it reads the shared cuts.
-  auto pass = [&](std::initializer_list<const char*> extra, bool tileCuts) {
-    std::vector<std::string> all = defines;
-    all.insert(all.end(), extra.begin(), extra.end());
-    const gl::Program& shader = program(all);
+  // One lighting pass with `extra` flags; `tileCuts`: it reads the shared cuts.
+  auto pass = [&](unsigned extra, bool tileCuts) {
+    const gl::Program& shader = program(glsl::lightcutsDefines(flags | extra));
     shader.use();
     bindLightingInputs(shader, gbuffer, scene, view);
     glActiveTexture(GL_TEXTURE5);
@@ -128,13 +127,13 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, 0, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    pass({"TILE_CUTS", "SHARED_PASS"}, true);
+    pass(glsl::kLightcutsTileCuts | glsl::kLightcutsSharedPass, true);
     glStencilFunc(GL_EQUAL, 1, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    pass({"OWN_PASS"}, false);
+    pass(glsl::kLightcutsOwnPass, false);
     glDisable(GL_STENCIL_TEST);
   } else {
-    pass({}, false);
+    pass(0u, false);
   }
   glDisable(GL_BLEND);
   glActiveTexture(GL_TEXTURE0);
@@ -199,9 +198,9 @@ CutStats LightcutsMethod::cutStats() const {
     lightEvals += texels[i + 1];
     nodeEvals += texels[i + 2];
     stats.maxCut = std::max(stats.maxCut, int(texels[i]));
-    const int kind = int(texels[i + 3] + 0.5f);  // 1 own cut, 2 own cut at the maximum, 3 tile's
-    if (kind == 3) ++stats.pixelsSharedCut;
-    if (kind == 2) {
+    const int kind = int(texels[i + 3] + 0.5f);
+    if (kind == glsl::kCutStatsSharedCut) ++stats.pixelsSharedCut;
+    if (kind == glsl::kCutStatsOwnCutAtMax) {
       ++stats.pixelsAtMaxCut;
       const std::size_t pixel = i / 4, x = pixel % width_, y = pixel / width_;
       stats.atMaxCut[(height_ - 1 - y) * width_ + x] = 1;  // GL rows run bottom-up

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "gl/context.h"
+#include "glsl/variants.h"
 #include "render/lighting_inputs.h"
 
 namespace manylight {
@@ -10,12 +11,11 @@ namespace manylight {
 using namespace gl::api;
 
 std::vector<std::string> ReferenceMethod::variant(const GpuScene& scene) {
-  std::vector<std::string> defines;
-  if (scene.pointStart() > 0) defines.push_back("HAS_DIRECTIONAL");
-  if (scene.spotStart() > scene.pointStart()) defines.push_back("HAS_POINT");
-  if (scene.lightCount() > scene.spotStart()) defines.push_back("HAS_SPOT");
-  if (scene.hasSpecular()) defines.push_back("HAS_SPECULAR");
-  return defines;
+  return glsl::referenceDefines(
+      (scene.pointStart() > 0 ? glsl::kReferenceHasDirectional : 0u) |
+      (scene.spotStart() > scene.pointStart() ? glsl::kReferenceHasPoint : 0u) |
+      (scene.lightCount() > scene.spotStart() ? glsl::kReferenceHasSpot : 0u) |
+      (scene.hasSpecular() ? glsl::kReferenceHasSpecular : 0u));
 }
 
 const gl::Program& ReferenceMethod::program(const std::vector<std::string>& defines) const {

@@ -12,6 +12,7 @@
 #include "generators/light_layouts.h"
 #include "render/playback.h"
 #include "render/render_job.h"
+#include "render/tile_cuts.h"
 #include "scene/gltf_loader.h"
 #include "tests/test_support.h"
 
@@ -22,7 +23,6 @@ constexpr int kWidth = 96, kHeight = 72;
 // Both methods sum in float: allow 1e-4 of the pixel on top of ε (measured rounding: below
 // 1e-5), and the shader's absolute floor for near-black pixels.
 constexpr double kFloatSlack = 1e-4;
-constexpr double kAbsoluteFloor = 1e-6;
 // Large enough that the total rule converges on nearly every pixel of these scenes.
 constexpr int kMaxCut = 8000;
 

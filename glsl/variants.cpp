@@ -1,0 +1,101 @@
+#include "glsl/variants.h"
+
+#include <cstdio>
+
+#include "bake/light_texture_layout.h"
+#include "bake/light_tree_layout.h"
+#include "render/far_field.h"
+#include "render/tile_cuts.h"
+#include "scene/shading_model.h"
+
+namespace manylight::glsl {
+namespace {
+
+std::vector<std::string> definesOf(unsigned flags, std::initializer_list<const char*> names) {
+  std::vector<std::string> out;
+  unsigned bit = 1;
+  for (const char* name : names) {
+    if (flags & bit) out.emplace_back(name);
+    bit <<= 1;
+  }
+  return out;
+}
+
+std::vector<std::vector<std::string>> lightcutsVariants() {
+  std::vector<std::vector<std::string>> out;
+  for (unsigned base = 0; base < 8; ++base) {  // Distance, HasSpecular, FittedColour
+    out.push_back(lightcutsDefines(base));
+    if (base & kLightcutsDistance) continue;  // the distance criterion has no shared cuts
+    out.push_back(lightcutsDefines(base | kLightcutsTileCuts | kLightcutsSharedPass));
+    out.push_back(lightcutsDefines(base | kLightcutsOwnPass));
+  }
+  return out;
+}
+
+// `value` as a GLSL float literal that reads back as the same float.
+std::string floatLiteral(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", double(float(value)));
+  std::string out = text;
+  if (out.find_first_of(".e") == std::string::npos) out += ".0";
+  return out;
+}
+
+std::string constLine(const char* type, const char* name, const std::string& value) {
+  return std::string("const ") + type + " " + name + " = " + value + ";\n";
+}
+
+}  // namespace
+
+std::vector<std::string> lightcutsDefines(unsigned flags) {
+  return definesOf(
+      flags, {"DISTANCE", "HAS_SPECULAR", "FITTED_COLOUR", "TILE_CUTS", "SHARED_PASS", "OWN_PASS"});
+}
+
+std::vector<std::string> referenceDefines(unsigned flags) {
+  return definesOf(flags, {"HAS_DIRECTIONAL", "HAS_POINT", "HAS_SPOT", "HAS_SPECULAR"});
+}
+
+std::vector<std::string> gbufferDefines(Aov aov) {
+  for (const AovChannel& c : kAovChannels) {
+    if (c.aov == aov) return {"AOV", c.define};
+  }
+  return {};
+}
+
+std::vector<ProgramVariants> programs() {
+  std::vector<ProgramVariants> out;
+  out.push_back({"gbuffer.vert", "gbuffer.frag", {"gPosition"}, {gbufferDefines(Aov::None)}});
+  for (const AovChannel& c : kAovChannels) out[0].variants.push_back(gbufferDefines(c.aov));
+  out.push_back({"fullscreen.vert", "blend_composite.frag", {"oColour"}, {{}}});
+  ProgramVariants reference{"fullscreen.vert", "lighting_reference.frag", {"oRadiance"}, {}};
+  for (unsigned flags = 0; flags < 16; ++flags) {
+    reference.variants.push_back(referenceDefines(flags));
+  }
+  out.push_back(reference);
+  out.push_back({"fullscreen.vert",
+                 "lighting_lightcuts.frag",
+                 {"oRadiance", "oCutStats"},
+                 lightcutsVariants()});
+  return out;
+}
+
+std::string layoutPrelude() {
+  std::string out;
+  out += constLine("float", "kPi", floatLiteral(shading::kPi));
+  out += constLine("float", "kMinDistanceSquared", floatLiteral(shading::kMinDistanceSquared));
+  out += constLine("float", "kDielectricF0", floatLiteral(shading::kDielectricF0));
+  out += constLine("float", "kMaxPhongExponent", floatLiteral(shading::kMaxPhongExponent));
+  out += constLine("int", "kTexelsPerLight", std::to_string(layout::kTexelsPerLight));
+  out += constLine("int", "kFarFieldTexels", std::to_string(kFarFieldTexels));
+  out += constLine("uint", "kNoSharedCut", std::to_string(kNoSharedCut) + "u");
+  out += constLine("float", "kAbsoluteFloor", floatLiteral(kAbsoluteFloor));
+  out += constLine("int", "kNodeWords", std::to_string(layout::kNodeWords));
+  out += constLine("int", "kSpotNodeWords", std::to_string(layout::kSpotNodeWords));
+  out += constLine("int", "kCutStatsOwnCut", std::to_string(kCutStatsOwnCut));
+  out += constLine("int", "kCutStatsOwnCutAtMax", std::to_string(kCutStatsOwnCutAtMax));
+  out += constLine("int", "kCutStatsSharedCut", std::to_string(kCutStatsSharedCut));
+  return out;
+}
+
+}  // namespace manylight::glsl
