@@ -129,17 +129,7 @@ CLI::App* addPlayCommand(CLI::App& app, PlayArgs& p) {
   return playCmd;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const auto processStart = Clock::now();
-  CLI::App app{"manylight: headless OpenGL renderer for glTF scenes with many lights"};
-  app.require_subcommand(1);
-  RenderArgs r;
-  CLI::App* render = addRenderCommand(app, r);
-  PlayArgs p;
-  CLI::App* playCmd = addPlayCommand(app, p);
-  BakeArgs b;
+CLI::App* addBakeCommand(CLI::App& app, BakeArgs& b) {
   CLI::App* bake = app.add_subcommand("bake",
                                       "Bake a glTF scene (and a light list) into one file that "
                                       "render loads without rebuilding anything");
@@ -147,7 +137,10 @@ int main(int argc, char** argv) {
   bake->add_option("-o,--output", b.output, "The baked scene, NAME.mlbake")->required();
   addSceneOptions(bake, b.input);
   bake->add_option("--stats", b.statsPath, "Write timings and facts about the bake as JSON");
-  FitArgs f;
+  return bake;
+}
+
+CLI::App* addFitGammaCommand(CLI::App& app, FitArgs& f) {
   CLI::App* fit = app.add_subcommand("fit-gamma",
                                      "Fit out = A·in^γ by least squares in log–log space, to pairs "
                                      "from a file or measured by rendering");
@@ -164,7 +157,10 @@ int main(int argc, char** argv) {
   fit->add_option("--backend", f.backend, "Context for --calibrate: auto, egl, osmesa")
       ->capture_default_str();
   fit->add_flag("-v,--verbose", f.verbose, "Say which context was chosen");
-  CompareArgs c;
+  return fit;
+}
+
+CLI::App* addCompareCommand(CLI::App& app, CompareArgs& c) {
   CLI::App* compare = app.add_subcommand("compare",
                                          "Compare two images value by value (OpenImageIO); exit 0 "
                                          "when they match, 4 when they differ");
@@ -183,6 +179,25 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   compare->add_option("--diff", c.diff,
                       "Where to write the difference image when they differ (default: B.diff.png)");
+  return compare;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const auto processStart = Clock::now();
+  CLI::App app{"manylight: headless OpenGL renderer for glTF scenes with many lights"};
+  app.require_subcommand(1);
+  RenderArgs r;
+  CLI::App* render = addRenderCommand(app, r);
+  PlayArgs p;
+  CLI::App* playCmd = addPlayCommand(app, p);
+  BakeArgs b;
+  CLI::App* bake = addBakeCommand(app, b);
+  FitArgs f;
+  CLI::App* fit = addFitGammaCommand(app, f);
+  CompareArgs c;
+  CLI::App* compare = addCompareCommand(app, c);
   BenchArgs benchArgs;
   CLI::App* bench = addBenchCommand(app, benchArgs);
   requireFiniteNumbers(app);

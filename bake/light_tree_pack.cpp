@@ -71,4 +71,8 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
   return packed;
 }
 
+PackedTrees bakeLightTrees(const std::vector<Light>& lights, const TreeOptions& options) {
+  return packLightTrees(buildLightTrees(lights, options), options.nodeColour);
+}
+
 }  // namespace manylight

@@ -20,4 +20,8 @@ struct PackedTrees {
 PackedTrees packLightTrees(const std::vector<LightTree>& trees,
                            NodeColourCoding coding = NodeColourCoding::Rgb9e5);
 
+// The bake of a render's lights: their trees built with `options`, then packed. Whoever
+// prepares a render calls it (or loads a baked file's trees); methods only upload.
+PackedTrees bakeLightTrees(const std::vector<Light>& lights, const TreeOptions& options = {});
+
 }  // namespace manylight

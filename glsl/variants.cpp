@@ -4,8 +4,8 @@
 
 #include "bake/light_texture_layout.h"
 #include "bake/light_tree_layout.h"
-#include "render/far_field.h"
-#include "render/tile_cuts.h"
+#include "cuts/far_field.h"
+#include "cuts/tile_cuts.h"
 #include "scene/shading_model.h"
 
 namespace manylight::glsl {

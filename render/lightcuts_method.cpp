@@ -13,11 +13,6 @@ namespace manylight {
 
 using namespace gl::api;
 
-LightcutsMethod::LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
-                                 const TreeOptions& options, bool distance)
-    : LightcutsMethod(packLightTrees(buildLightTrees(lights, options), options.nodeColour), lights,
-                      gbuffer, distance) {}
-
 LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& lights,
                                  const GBuffer& gbuffer, bool distance)
     : layout_(std::move(packed)),

@@ -57,12 +57,9 @@ struct CutStats {
 
 class LightcutsMethod {
  public:
-  // Builds the trees of `lights` and uploads them; needs a current context. Throws
-  // gl::GlError when the driver cannot hold them.
+  // Uploads trees baked for `lights` (bakeLightTrees, or a baked file's): nothing is built
+  // here. Needs a current context; throws gl::GlError when the driver cannot hold them.
   // `distance`: cut by the distance criterion (lightcuts-distance) instead of error bounds.
-  LightcutsMethod(const std::vector<Light>& lights, const GBuffer& gbuffer,
-                  const TreeOptions& options, bool distance);
-  // Uploads trees built and packed before (a baked scene) for `lights`: nothing is rebuilt.
   LightcutsMethod(PackedTrees packed, const std::vector<Light>& lights, const GBuffer& gbuffer,
                   bool distance);
 

@@ -1,5 +1,6 @@
 #include "render/render_job.h"
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -16,6 +17,23 @@ Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* fra
   return scene.cameras[std::max(request.camera, 0)];
 }
 
+std::unique_ptr<Renderer> prepareRenderer(const Scene& scene, const std::vector<Light>& lights,
+                                          int width, int height, Method method,
+                                          const TreeOptions& options, const PackedTrees* baked,
+                                          double* bakeMs) {
+  PackedTrees trees;
+  const auto start = std::chrono::steady_clock::now();
+  if (method != Method::Reference && !baked) {
+    trees = bakeLightTrees(lights, options);
+    baked = &trees;
+  }
+  const double buildMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  auto renderer = std::make_unique<Renderer>(scene, lights, width, height, method, baked);
+  if (bakeMs) *bakeMs = (method == Method::Reference ? 0.0 : buildMs) + renderer->uploadMs();
+  return renderer;
+}
+
 PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
     : defaultRig(scene.lights.empty()), camera(resolveCamera(scene, request, &framed)) {
   if (defaultRig) rig = defaultLightRig(camera);
@@ -23,9 +41,9 @@ PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
   lightCount = lights.size();
   // An AOV runs no lighting pass, so the reference method, which builds nothing, serves it.
   const Method method = request.aov == Aov::None ? request.method : Method::Reference;
-  renderer = std::make_unique<Renderer>(scene, lights, request.width, request.height, method,
-                                        request.lightcuts.trees,
-                                        defaultRig ? nullptr : request.prebuiltTrees);
+  renderer =
+      prepareRenderer(scene, lights, request.width, request.height, method, request.lightcuts.trees,
+                      defaultRig ? nullptr : request.prebuiltTrees, &bakeMs);
   settings.aov = request.aov;
   settings.ambient = defaultRig && request.rigAmbient ? glm::vec3(kRigAmbient) : request.ambient;
   settings.lightsPerPass = request.lightsPerPass;
@@ -38,7 +56,7 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   out.framed = p.framed;
   out.defaultRig = p.defaultRig;
   out.lightCount = p.lightCount;
-  out.bakeMs = p.renderer->bakeMs();
+  out.bakeMs = p.bakeMs;
   if (p.renderer->lightcuts()) out.nodeColour = p.renderer->lightcuts()->nodeColour();
   out.image =
       p.renderer->render(makeView(p.camera, request.width, request.height), p.settings, &out.frame);

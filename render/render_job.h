@@ -44,6 +44,15 @@ Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* fra
 // What a request sets up before its first frame (a still or a playback): the camera, the
 // lights (the scene's, or the default rig fixed to that camera), a renderer for them, and
 // the frame settings. Needs a current context. Throws Error or gl::GlError.
+// A renderer for `lights`: a lightcuts method uploads `baked` (a baked file's trees) or, when
+// it is null, trees baked here with `options`. `bakeMs`: the milliseconds spent baking and
+// uploading them (0 for the reference).
+std::unique_ptr<Renderer> prepareRenderer(const Scene& scene, const std::vector<Light>& lights,
+                                          int width, int height, Method method,
+                                          const TreeOptions& options = {},
+                                          const PackedTrees* baked = nullptr,
+                                          double* bakeMs = nullptr);
+
 struct PreparedRender {
   PreparedRender(const Scene& scene, const RenderRequest& request);
   // Before `camera`: its initialiser sets `framed`.
@@ -52,6 +61,8 @@ struct PreparedRender {
   Camera camera;
   std::vector<Light> rig;
   std::size_t lightCount = 0;
+  // Milliseconds spent baking (when no baked trees were given) and uploading the light trees.
+  double bakeMs = 0.0;
   std::unique_ptr<Renderer> renderer;
   FrameSettings settings;
 };

@@ -32,16 +32,16 @@ const char* methodName(Method m) {
 }
 
 Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-                   Method method, const TreeOptions& trees, const PackedTrees* prebuilt)
+                   Method method, const PackedTrees* trees)
     : scene_(scene), gpu_(scene, lights), gbuffer_(width, height) {
   if (method != Method::Reference) {
+    if (!trees) throw Error(std::string(methodName(method)) + " needs the lights' baked trees");
     glFinish();
     const auto start = std::chrono::steady_clock::now();
     const bool distance = method == Method::LightcutsDistance;
-    lightcuts_ = prebuilt ? std::make_unique<LightcutsMethod>(*prebuilt, lights, gbuffer_, distance)
-                          : std::make_unique<LightcutsMethod>(lights, gbuffer_, trees, distance);
+    lightcuts_ = std::make_unique<LightcutsMethod>(*trees, lights, gbuffer_, distance);
     glFinish();
-    bakeMs_ =
+    uploadMs_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 }

@@ -62,12 +62,12 @@ void warmUpGeometryPass(Aov aov = Aov::None);
 class Renderer {
  public:
   // Uploads the scene and compiles the programs; needs a current context. A lightcuts
-  // method builds its trees from `lights` with `trees`, or uploads `prebuilt` (a baked
-  // scene's, packed for these lights) without building anything. Throws gl::GlError.
+  // method uploads `trees`, baked for these lights (bakeLightTrees or a baked file), and
+  // needs them: Error when they are missing. Throws gl::GlError.
   Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-           Method method, const TreeOptions& trees = {}, const PackedTrees* prebuilt = nullptr);
-  // Milliseconds spent building and uploading the light trees (lightcuts methods; else 0).
-  double bakeMs() const { return bakeMs_; }
+           Method method, const PackedTrees* trees = nullptr);
+  // Milliseconds spent uploading the light trees (lightcuts methods; else 0).
+  double uploadMs() const { return uploadMs_; }
   // The lightcuts method, or null for the reference method.
   const LightcutsMethod* lightcuts() const { return lightcuts_.get(); }
 
@@ -91,7 +91,7 @@ class Renderer {
   std::unique_ptr<GeometryPass> aovGeometry_;
   ReferenceMethod reference_;
   std::unique_ptr<LightcutsMethod> lightcuts_;
-  double bakeMs_ = 0.0;
+  double uploadMs_ = 0.0;
   gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
 };
 

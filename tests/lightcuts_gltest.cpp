@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <iostream>
 
+#include "cuts/tile_cuts.h"
 #include "generators/light_layouts.h"
 #include "render/playback.h"
 #include "render/render_job.h"
-#include "render/tile_cuts.h"
 #include "scene/gltf_loader.h"
 #include "tests/test_support.h"
 

@@ -9,6 +9,7 @@
 
 #include "base/error.h"
 #include "gl/context.h"
+#include "render/render_job.h"
 
 namespace manylight {
 namespace {
@@ -128,6 +129,41 @@ double Sweep::floorMs() {
   return floorMs_ = median(ms);
 }
 
+Image Sweep::referenceFrames(const std::vector<Light>& lights, const View& view,
+                             RunRecord& ref) const {
+  const int w = settings_.width, h = settings_.height;
+  resetPeakMemory();
+  Renderer renderer(scene_, lights, w, h, Method::Reference);
+  // The warm-up lights a share of the rows small enough to take seconds, and its time
+  // estimates a whole frame's.
+  FrameSettings fs;
+  const double evaluations = double(lights.size()) * double(w) * double(h);
+  const int bands = (h + kRowBand - 1) / kRowBand;
+  fs.rowBandStride =
+      std::clamp(int(std::ceil(evaluations / (kSlowestEvaluationsPerMs * 5000.0))), 1, bands);
+  FrameStats stats;
+  Image reference = renderer.render(view, fs, &stats);
+  const double estimate = stats.renderMs * fs.rowBandStride;
+  std::vector<double> ms;
+  if (estimate > settings_.referenceSeconds * 1000.0) {
+    fs.rowBandStride =
+        int(std::min<double>(std::ceil(estimate / (settings_.referenceSeconds * 1000.0)), bands));
+    reference = renderer.render(view, fs, &stats);
+    ms.push_back(stats.renderMs * fs.rowBandStride);
+  } else {
+    fs.rowBandStride = 1;
+    for (int i = 0; i < std::max(settings_.repeats, 1); ++i) {
+      reference = renderer.render(view, fs, &stats);
+      ms.push_back(stats.renderMs);
+    }
+  }
+  ref.rowBandStride = fs.rowBandStride;
+  setTimes(ref, ms);
+  ref.lightEvaluationsPerPixel = double(lights.size());
+  ref.peakRssMb = peakMemoryMb();
+  return reference;
+}
+
 std::vector<RunRecord> Sweep::run(const SweepCase& c,
                                   const std::function<void(const std::string&)>& step) {
   const int w = settings_.width, h = settings_.height;
@@ -151,35 +187,7 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
   Image reference;
   std::vector<bool> rows;
   try {
-    resetPeakMemory();
-    Renderer renderer(scene_, lights, w, h, Method::Reference);
-    // The warm-up lights a share of the rows small enough to take seconds, and its time
-    // estimates a whole frame's.
-    FrameSettings fs;
-    const double evaluations = double(lights.size()) * double(w) * double(h);
-    const int bands = (h + kRowBand - 1) / kRowBand;
-    fs.rowBandStride =
-        std::clamp(int(std::ceil(evaluations / (kSlowestEvaluationsPerMs * 5000.0))), 1, bands);
-    FrameStats stats;
-    reference = renderer.render(view, fs, &stats);
-    const double estimate = stats.renderMs * fs.rowBandStride;
-    std::vector<double> ms;
-    if (estimate > settings_.referenceSeconds * 1000.0) {
-      fs.rowBandStride =
-          int(std::min<double>(std::ceil(estimate / (settings_.referenceSeconds * 1000.0)), bands));
-      reference = renderer.render(view, fs, &stats);
-      ms.push_back(stats.renderMs * fs.rowBandStride);
-    } else {
-      fs.rowBandStride = 1;
-      for (int i = 0; i < std::max(settings_.repeats, 1); ++i) {
-        reference = renderer.render(view, fs, &stats);
-        ms.push_back(stats.renderMs);
-      }
-    }
-    ref.rowBandStride = fs.rowBandStride;
-    setTimes(ref, ms);
-    ref.lightEvaluationsPerPixel = double(lights.size());
-    ref.peakRssMb = peakMemoryMb();
+    reference = referenceFrames(lights, view, ref);
     rows = rowsLit(h, ref.rowBandStride);
     ref.errors = measureErrors(reference, reference, rows);
   } catch (const std::exception& e) {
@@ -190,6 +198,7 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
 
   std::vector<RunRecord> out;
   std::map<Method, std::unique_ptr<Renderer>> renderers;
+  std::map<Method, double> bakeMs;  // per renderer: its trees baked and uploaded
   for (const SweepVariant& v : settings_.variants) {
     if (v.method == Method::Reference) {
       out.push_back(ref);
@@ -204,8 +213,10 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
       // A new renderer's first frame compiles programs and touches fresh buffers: warm up.
       // The variants after it differ only in uniforms.
       const bool warmUp = !renderer;
-      if (!renderer) renderer = std::make_unique<Renderer>(scene_, lights, w, h, v.method);
-      r.bakeMs = renderer->bakeMs();
+      if (!renderer) {
+        renderer = prepareRenderer(scene_, lights, w, h, v.method, {}, nullptr, &bakeMs[v.method]);
+      }
+      r.bakeMs = bakeMs[v.method];
       FrameSettings fs = variantSettings(v, c, settings_.maxCut);
       r.maxCut = fs.lightcuts.maxCut;
       FrameStats stats;
@@ -239,6 +250,29 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
   return out;
 }
 
+namespace {
+
+// Per pixel of a reference frame: whether it is covered and its largest channel. Returns the
+// floor of a pixel's scale: each pixel's change is relative to its largest reference channel
+// in either frame (a bright spot moving in or out counts at its own scale), but never to less
+// than 1% of the frame's mean brightness, so near-black pixels do not make ratios huge.
+double referencePeaks(const Image& r, std::vector<bool>& covered, std::vector<float>& peak) {
+  covered.assign(std::size_t(r.width) * r.height, false);
+  peak.assign(covered.size(), 0.0f);
+  double brightness = 0.0;
+  long long coveredPixels = 0;
+  for (std::size_t p = 0; p < covered.size(); ++p) {
+    covered[p] = r.rgba[p * 4 + 3] > 0.0f;
+    peak[p] = std::max({r.rgba[p * 4], r.rgba[p * 4 + 1], r.rgba[p * 4 + 2]});
+    if (!covered[p]) continue;
+    brightness += peak[p];
+    ++coveredPixels;
+  }
+  return std::max(0.01 * brightness / double(std::max(coveredPixels, 1ll)), kRelativeErrorFloor);
+}
+
+}  // namespace
+
 std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
                                              const std::function<void(const std::string&)>& step) {
   const int w = settings_.width, h = settings_.height;
@@ -260,7 +294,7 @@ std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
     t.frames = frames;
     out.push_back(t);
     auto& renderer = renderers[v.method];
-    if (!renderer) renderer = std::make_unique<Renderer>(scene_, lights, w, h, v.method);
+    if (!renderer) renderer = prepareRenderer(scene_, lights, w, h, v.method);
   }
   previous.resize(out.size());
   sums.assign(out.size(), 0.0);
@@ -272,22 +306,9 @@ std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
     const float angle = 6.28318530718f * float(f) / float(frames);
     const View view = makeView(orbitCamera(scene_.cameras[0], centre, angle), w, h);
     const Image r = reference.render(view, {});
-    // Each pixel's change is relative to its largest reference channel in either frame (a
-    // bright spot moving in or out counts at its own scale), but never to less than 1% of
-    // the frame's mean brightness, so near-black pixels do not make ratios huge.
-    std::vector<bool> covered(std::size_t(w) * h);
-    std::vector<float> peak(covered.size());
-    double brightness = 0.0;
-    long long coveredPixels = 0;
-    for (std::size_t p = 0; p < covered.size(); ++p) {
-      covered[p] = r.rgba[p * 4 + 3] > 0.0f;
-      peak[p] = std::max({r.rgba[p * 4], r.rgba[p * 4 + 1], r.rgba[p * 4 + 2]});
-      if (!covered[p]) continue;
-      brightness += peak[p];
-      ++coveredPixels;
-    }
-    const double floor =
-        std::max(0.01 * brightness / double(std::max(coveredPixels, 1ll)), kRelativeErrorFloor);
+    std::vector<bool> covered;
+    std::vector<float> peak;
+    const double floor = referencePeaks(r, covered, peak);
     for (std::size_t k = 0; k < out.size(); ++k) {
       Temporal& t = out[k];
       if (!t.failure.empty()) continue;

@@ -109,6 +109,8 @@ class Sweep {
   const Scene& scene_;
   const SweepSettings& settings_;
   double floorMs_ = -1.0;
+  // The reference's frames of `lights` into `ref` (times, rows lit, memory); returns its image.
+  Image referenceFrames(const std::vector<Light>& lights, const View& view, RunRecord& ref) const;
 };
 
 }  // namespace manylight
