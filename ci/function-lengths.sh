@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Functions a reader can hold: none over 100 lines and at most three over 80, as pmccabe
+# counts them (its fifth column), over every C++ source of the libraries, app, tests and
+# benchmarks. Prints the offenders and fails when either limit is passed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+report=$(find base scene bake cuts glsl gl render image tools generators app tests bench \
+  -name '*.cpp' -o -name '*.h' | sort | xargs pmccabe 2>/dev/null | sort -t$'\t' -k5,5nr)
+over100=$(awk -F'\t' '$5 > 100' <<<"$report")
+over80=$(awk -F'\t' '$5 > 80' <<<"$report")
+count80=$(grep -c . <<<"$over80" || true)
+if [[ -n "$over100" ]]; then
+  echo "function-lengths.sh: functions over 100 lines:"; cut -f5,6 <<<"$over100"; exit 1
+fi
+if (( count80 > 3 )); then
+  echo "function-lengths.sh: $count80 functions over 80 lines (at most 3):"; cut -f5,6 <<<"$over80"; exit 1
+fi
+echo "function-lengths.sh: none over 100 lines, $count80 over 80:"
+[[ -n "$over80" ]] && cut -f5,6 <<<"$over80"
+exit 0
