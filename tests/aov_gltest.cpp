@@ -12,6 +12,7 @@
 #include "scene/gltf_loader.h"
 #include "scene/srgb.h"
 #include "tests/cli_support.h"
+#include "tests/gl_support.h"
 #include "tests/test_support.h"
 
 namespace manylight::testing {

@@ -4,8 +4,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/render_job.h"
 #include "scene/gltf_loader.h"
 #include "tests/cli_support.h"
+#include "tests/gl_support.h"
 #include "tools/sweep.h"
 
 namespace manylight::testing {
@@ -209,6 +211,29 @@ TEST(Bench, CliStabilitySuiteAndReportWriteThePages) {
   EXPECT_NE(page.find("## Temporal stability"), std::string::npos) << page;
   EXPECT_NE(readFile(docs / "benchmarks.md").find("## The frontier at 50 lights"),
             std::string::npos);
+}
+
+TEST(Bench, ReferenceEstimateFollowsTheMeasuredThroughput) {
+  // Lights × every pixel (covered or not) over kReferenceEvaluationsPerSecond:
+  // 65,536 × 640 × 480 / 4e8 = 50.3 s.
+  EXPECT_NEAR(referenceSecondsEstimate(65536, 640, 480), 50.3, 0.1);
+  EXPECT_NEAR(referenceSecondsEstimate(1048576, 640, 480), 805.3, 0.1);
+  EXPECT_EQ(referenceSecondsEstimate(0, 640, 480), 0.0);
+}
+
+TEST(Bench, ReferenceEstimateNotesOnlyManyLightsOverManyPixels) {
+  // 2^32 light evaluations: 13,981 lights at 640×480 are under it, 13,982 over.
+  EXPECT_EQ(slowReferenceNote("a.glb", 13981, 640, 480), "");
+  EXPECT_EQ(slowReferenceNote("a.glb", 13982, 640, 480),
+            "a.glb: 13982 lights × 640×480 pixels with the reference method (every light at "
+            "every pixel) will take up to about 11 s at llvmpipe's 400 M light evaluations a "
+            "second; --method lightcuts takes 0.4–2 s for 65,536 to 1,048,576 lights at 640×480 "
+            "there");
+  EXPECT_NE(slowReferenceNote("big.gltf", 1048576, 640, 480).find("about 805 s"),
+            std::string::npos);
+  // Below 1,024 lights the reference is the faster method, however large the image.
+  EXPECT_EQ(slowReferenceNote("a.glb", 1023, 65536, 65536), "");
+  EXPECT_NE(slowReferenceNote("a.glb", 1024, 4096, 4096), "");
 }
 
 }  // namespace

@@ -8,7 +8,6 @@
 #include "base/error.h"
 #include "generators/light_layouts.h"
 #include "image/image_errors.h"
-#include "render/render_job.h"
 
 namespace manylight::testing {
 namespace {
@@ -119,29 +118,6 @@ TEST(BenchTools, ImageErrorsNaNAndBlackReferencesReadAsLargeErrors) {
   EXPECT_NEAR(black.maxRelative, 1e-3 / kRelativeErrorFloor, 1e-3);  // the floor divides
   Image other = image(3, 1, 0.0f);
   EXPECT_THROW(measureErrors(other, ref), ImageError);
-}
-
-TEST(BenchTools, ReferenceEstimateFollowsTheMeasuredThroughput) {
-  // Lights × every pixel (covered or not) over kReferenceEvaluationsPerSecond:
-  // 65,536 × 640 × 480 / 4e8 = 50.3 s.
-  EXPECT_NEAR(referenceSecondsEstimate(65536, 640, 480), 50.3, 0.1);
-  EXPECT_NEAR(referenceSecondsEstimate(1048576, 640, 480), 805.3, 0.1);
-  EXPECT_EQ(referenceSecondsEstimate(0, 640, 480), 0.0);
-}
-
-TEST(BenchTools, ReferenceEstimateNotesOnlyManyLightsOverManyPixels) {
-  // 2^32 light evaluations: 13,981 lights at 640×480 are under it, 13,982 over.
-  EXPECT_EQ(slowReferenceNote("a.glb", 13981, 640, 480), "");
-  EXPECT_EQ(slowReferenceNote("a.glb", 13982, 640, 480),
-            "a.glb: 13982 lights × 640×480 pixels with the reference method (every light at "
-            "every pixel) will take up to about 11 s at llvmpipe's 400 M light evaluations a "
-            "second; --method lightcuts takes 0.4–2 s for 65,536 to 1,048,576 lights at 640×480 "
-            "there");
-  EXPECT_NE(slowReferenceNote("big.gltf", 1048576, 640, 480).find("about 805 s"),
-            std::string::npos);
-  // Below 1,024 lights the reference is the faster method, however large the image.
-  EXPECT_EQ(slowReferenceNote("a.glb", 1023, 65536, 65536), "");
-  EXPECT_NE(slowReferenceNote("a.glb", 1024, 4096, 4096), "");
 }
 
 }  // namespace

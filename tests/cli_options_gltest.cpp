@@ -8,6 +8,7 @@
 #include "gl/limits.h"
 #include "render/render_job.h"
 #include "tests/cli_support.h"
+#include "tests/gl_support.h"
 
 namespace manylight::testing {
 namespace {

@@ -8,6 +8,7 @@
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
 #include "tests/compressed_scenes.h"
+#include "tests/gl_support.h"
 #include "tests/test_support.h"
 
 namespace manylight::testing {

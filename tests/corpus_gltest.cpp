@@ -12,6 +12,7 @@
 #include "base/error.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
+#include "tests/gl_support.h"
 #include "tests/test_support.h"
 
 namespace manylight::testing {

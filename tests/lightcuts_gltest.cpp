@@ -14,6 +14,7 @@
 #include "render/playback.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
+#include "tests/gl_support.h"
 #include "tests/test_support.h"
 
 namespace manylight::testing {

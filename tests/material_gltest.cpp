@@ -10,6 +10,7 @@
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
 #include "tests/cli_support.h"
+#include "tests/gl_support.h"
 #include "tests/oracle_compare.h"
 #include "tests/test_support.h"
 

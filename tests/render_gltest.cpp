@@ -5,6 +5,7 @@
 #include "glsl/variants.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
+#include "tests/gl_support.h"
 #include "tests/oracle.h"
 #include "tests/oracle_compare.h"
 #include "tests/test_support.h"

@@ -33,11 +33,6 @@ std::string roomScene(const RoomOptions& options, const std::string& name) {
   return path;
 }
 
-gl::Context& context() {
-  static std::unique_ptr<gl::Context> ctx = gl::createContext(gl::Backend::Auto);
-  return *ctx;
-}
-
 fs::path artefactFolder() {
   const fs::path dir = fs::current_path() / "test-artefacts";
   fs::create_directories(dir);

@@ -1,12 +1,11 @@
 #pragma once
-// Helpers shared by the tests: temporary folders, generated scenes, a GL context per process.
+// Helpers shared by the tests, no GL: temporary folders, generated scenes, the corpus.
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "generators/scene_builder.h"
-#include "gl/context.h"
 
 namespace manylight::testing {
 
@@ -22,9 +21,6 @@ std::string roomScene(const RoomOptions& options, const std::string& name = "roo
 // Returns the .gltf's path.
 std::string animatedScene(const std::string& name, const char* interpolation = "LINEAR",
                           float secondTime = 1.0f);
-
-// The process's GL context (auto backend), created on first use.
-gl::Context& context();
 
 // Where failing render tests put their actual and diff images.
 std::filesystem::path artefactFolder();
