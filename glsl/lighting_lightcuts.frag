@@ -359,7 +359,7 @@ void totalRuleCut() {
 
 #ifdef TILE_CUTS
 // The cut this pixel shares with its group, found on the CPU with bounds that hold at every
-// pixel of the group (render/tile_cuts.h documents it and the texels): sums its
+// pixel of the group (cuts/tile_cuts.h documents it and the texels): sums its
 // representatives and checks the stopping rule for this pixel. Returns false, leaving the
 // pixel to cut for itself, when it has no shared cut or the rule does not hold here.
 uniform usamplerBuffer uTileCuts;
@@ -368,7 +368,7 @@ uniform usampler2D uCutOfPixel;
 // Entries hold their representative's direction or position (and 1/range², and a spot's
 // cone) themselves, so the loop reads the tile's entries in order instead of lights
 // scattered over the light texture. Pixels on a shared cut are Lambert only
-// (render/tile_cuts.h), so the sum is of irradiance, times albedo/π at the end. One line
+// (cuts/tile_cuts.h), so the sum is of irradiance, times albedo/π at the end. One line
 // each: GLSL 3.30 has no line continuation. Two entries per iteration, as the reference path
 // sums four lights.
 #define EMBEDDED_SUM(first, count, TERM) for (k = first; k + 4 <= first + 2 * count; k += 4) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); vec4 c0 = uintBitsToFloat(texelFetch(uTileCuts, k + 1)); vec4 a1 = uintBitsToFloat(texelFetch(uTileCuts, k + 2)); vec4 c1 = uintBitsToFloat(texelFetch(uTileCuts, k + 3)); sum += TERM(a0) * c0.rgb + TERM(a1) * c1.rgb; } if (k < first + 2 * count) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); sum += TERM(a0) * uintBitsToFloat(texelFetch(uTileCuts, k + 1)).rgb; }
@@ -379,7 +379,7 @@ vec3 unusedL;
 vec3 tileTexel(int k) { return uintBitsToFloat(texelFetch(uTileCuts, k).xyz); }
 
 // The far field's irradiance at this pixel, per channel n · (F + J (x − c)), from its
-// texels at k (render/far_field.h).
+// texels at k (cuts/far_field.h).
 vec3 farField(int k) {
   vec3 d = s.position - tileTexel(k);
   vec3 e;

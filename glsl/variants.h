@@ -54,8 +54,8 @@ struct ProgramVariants {
 std::vector<ProgramVariants> programs();
 
 // The GLSL `const` lines of the constants GLSL shares with C++ (scene/shading_model.h,
-// bake/light_texture_layout.h, bake/light_tree_layout.h, render/far_field.h,
-// render/tile_cuts.h, CutStatsKind): the first part of the G-buffer and lighting stages.
+// bake/light_texture_layout.h, bake/light_tree_layout.h, cuts/far_field.h,
+// cuts/tile_cuts.h, CutStatsKind): the first part of the G-buffer and lighting stages.
 std::string layoutPrelude();
 
 }  // namespace manylight::glsl
