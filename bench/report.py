@@ -148,7 +148,7 @@ def max_cut_line(rows, settings):
 
 def measured_lines(settings):
     # What bench/merge_results.py recorded: which cases a later run re-measured.
-    return [f"- Re-measured: {', '.join(m['cases'])}: {m['note']}"
+    return [f"- Measured: {', '.join(m['cases'])}: {m['note']}"
             for m in settings.get("measured", [])]
 
 
