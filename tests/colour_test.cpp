@@ -15,12 +15,7 @@ namespace manylight {
 namespace {
 
 using testing::testFolder;
-
-std::string writeFile(const std::string& name, const std::string& text) {
-  const std::string path = (testFolder() / name).string();
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
+using testing::writeFile;
 
 TEST(Colour, PowerFitTheUe4TableGivesItsGamma) {
   // The Lightcuts-in-UE4 work's measured pairs: 8-bit code in, point-light brightness out.

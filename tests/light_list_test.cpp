@@ -15,12 +15,7 @@ namespace manylight {
 namespace {
 
 using testing::testFolder;
-
-std::string writeFile(const std::string& name, const std::string& text) {
-  const std::string path = (testFolder() / name).string();
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
+using testing::writeFile;
 
 std::vector<Light> readList(const std::string& path, std::size_t budget = 1000) {
   Scene scene;

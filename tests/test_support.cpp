@@ -27,6 +27,12 @@ fs::path testFolder() {
   return dir;
 }
 
+std::string writeFile(const std::string& name, const std::string& text) {
+  const std::string path = (testFolder() / name).string();
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
 std::string roomScene(const RoomOptions& options, const std::string& name) {
   const std::string path = (testFolder() / name).string();
   writeRoomScene(path, options);

@@ -12,6 +12,9 @@ namespace manylight::testing {
 // A fresh folder under the system temp folder, unique to this test; removed at exit.
 std::filesystem::path testFolder();
 
+// Writes `text` to NAME in the test folder and returns its path.
+std::string writeFile(const std::string& name, const std::string& text);
+
 // Writes the room scene with `options` into the test folder and returns its path.
 std::string roomScene(const RoomOptions& options, const std::string& name = "room.gltf");
 
