@@ -24,7 +24,13 @@ enum class LightLayout {
   SpotsAway,        // spot lights all pointing up: only the back wall above them is lit
   OnSurfaces,       // lights a millimetre above the floor and the back wall
   EightBitColours,  // 8-bit sRGB colours as light lists give them, often saturated
+  // Ranged layouts, for the light octree: each light's range shrinks with the count so that
+  // about kRangedReach lights reach a typical point whatever the count.
+  UniformRanged,  // point lights scattered over the room, with a range
+  StreetRanged,   // lamps over the floor on a jittered grid: spots pointing down, ranged
 };
+
+inline constexpr double kRangedReach = 100.0;
 
 // The names used on the command line and in results ("uniform", "two-groups", ...).
 const std::vector<std::pair<LightLayout, std::string>>& lightLayoutNames();

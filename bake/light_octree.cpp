@@ -1,0 +1,418 @@
+#include "bake/light_octree.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "bake/light_pack.h"
+#include "bake/octree_surfaces.h"
+
+namespace manylight {
+
+namespace {
+
+// Where a ranged light can contribute: a ball, cut by a cone for a spot; and the ball
+// around that support used for the coarse tests.
+struct Support {
+  glm::vec3 position{0.0f};
+  float range = 0.0f;
+  glm::vec3 centre{0.0f};  // bounding sphere of the support
+  float radius = 0.0f;
+  bool spot = false;
+  glm::vec3 axis{0.0f};
+  float cosOuter = 0.0f, sinOuter = 1.0f;
+};
+
+struct Box {
+  glm::vec3 lo, hi;
+};
+
+Support supportOf(const Light& light) {
+  Support s;
+  s.position = light.position;
+  s.range = light.range;
+  s.centre = light.position;
+  s.radius = light.range;
+  if (light.type != LightType::Spot) return s;
+  const double outer = std::clamp(double(light.outerConeAngle), 0.0, 1.5707963267948966);
+  s.spot = true;
+  s.axis = glm::normalize(light.direction);
+  s.cosOuter = float(std::cos(outer));
+  s.sinOuter = float(std::sin(outer));
+  // The smallest ball around the cone's cap: through the apex and the rim for a narrow cone,
+  // centred on the rim's plane for a wide one.
+  if (outer <= 0.7853981633974483) {
+    const double r = light.range / (2.0 * std::cos(outer));
+    s.centre = light.position + s.axis * float(r);
+    s.radius = float(r);
+  } else {
+    s.centre = light.position + s.axis * (light.range * s.cosOuter);
+    s.radius = light.range * s.sinOuter;
+  }
+  return s;
+}
+
+float squaredDistanceToBox(glm::vec3 p, const Box& b) {
+  const glm::vec3 d = glm::max(glm::max(b.lo - p, p - b.hi), glm::vec3(0.0f));
+  return glm::dot(d, d);
+}
+
+// Whether the spot's cone may meet the ball of radius `rho` around `c`: in front of the
+// apex, within range, and within the outer angle of the axis plus the ball (conservative:
+// never false where they meet).
+bool withinCone(const Support& s, glm::vec3 c, float rho) {
+  const glm::vec3 v = c - s.position;
+  const float along = glm::dot(v, s.axis);
+  if (along < -rho || along > s.range + rho) return false;
+  // cos · across ≤ rho + sin · along, squared where both sides are non-negative.
+  const float right = rho + s.sinOuter * along;
+  if (right < 0.0f) return false;
+  const float across2 = std::max(glm::dot(v, v) - along * along, 0.0f);
+  return s.cosOuter * s.cosOuter * across2 <= right * right;
+}
+
+bool withinCone(const Support& s, const Box& b, float margin) {
+  return withinCone(s, 0.5f * (b.lo + b.hi), 0.5f * glm::length(b.hi - b.lo) + margin);
+}
+
+// Whether the support may overlap the box grown by `margin` (conservative).
+bool overlaps(const Support& s, const Box& b, float margin) {
+  const float reach = s.radius + margin;
+  if (squaredDistanceToBox(s.centre, b) > reach * reach) return false;
+  return !s.spot || withinCone(s, b, margin);
+}
+
+// Whether every point of the box is inside the support, `margin` from its boundary.
+bool contains(const Support& s, const Box& b, float margin) {
+  const float inner = s.range - margin;
+  if (inner <= 0.0f) return false;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 c((corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y,
+                      (corner & 4) ? b.hi.z : b.lo.z);
+    const glm::vec3 v = c - s.position;
+    const float d2 = glm::dot(v, v);
+    if (d2 >= inner * inner) return false;
+    // Inside the cone with room to spare (the cone and the ball are convex, so the box is
+    // inside both when its corners are).
+    if (s.spot && glm::dot(v, s.axis) < s.cosOuter * std::sqrt(d2) + margin) return false;
+  }
+  return true;
+}
+
+Box cellBox(const LightOctree& o, int level, glm::uvec3 cell) {
+  const float edge = o.leafEdge * float(1u << (o.levels - 1 - level));
+  const glm::vec3 lo = o.origin + glm::vec3(cell) * edge;
+  return {lo, lo + glm::vec3(edge)};
+}
+
+// A subtree's nodes and lists, built on one thread.
+struct Part {
+  std::vector<std::vector<OctreeNode>> nodes;  // per level of the whole octree
+  std::vector<std::uint32_t> indices;
+};
+
+struct Build {
+  Build(const LightOctree& o, const std::vector<Support>& s, float m,
+        std::atomic<std::size_t>& e, std::atomic<bool>& f)
+      : octree(o), supports(s), margin(m), entries(e), overflow(f),
+        children(std::size_t(o.levels) + 1) {}
+  const LightOctree& octree;
+  const std::vector<Support>& supports;  // per light texture slot
+  const SurfaceCells* surfaces = nullptr;  // null: refine everywhere
+  float margin;
+  std::atomic<std::size_t>& entries;     // list entries written so far, all parts
+  std::atomic<bool>& overflow;
+  std::size_t budget = kMaxOctreeIndices;  // list entries at most
+  // Per level: the lists of the node being split's children (reused down the recursion).
+  std::vector<std::array<std::vector<std::uint32_t>, 8>> children;
+
+  // Nodes of this level are not built here but handed out as tasks (−1: none).
+  int taskLevel = -1;
+  struct Task {
+    std::size_t index;
+    std::vector<std::uint32_t> list;
+  };
+  std::vector<Task> tasks;
+
+  // Makes node `index` of `level` in `part` a leaf or a branch from `list`, the slots of
+  // its parent's list that overlap it, and builds its children (depth first).
+  void node(Part& part, int level, std::size_t index, const std::vector<std::uint32_t>& list) {
+    if (overflow.load(std::memory_order_relaxed)) return;
+    if (level == taskLevel) {
+      tasks.push_back({index, list});
+      return;
+    }
+    const glm::uvec3 cell = part.nodes[level][index].cell;
+    const Box box = cellBox(octree, level, cell);
+    bool split = level + 1 < octree.levels;
+    if (split) {
+      split = std::any_of(list.begin(), list.end(),
+                          [&](std::uint32_t s) { return !contains(supports[s], box, margin); });
+    }
+    if (!split) {
+      OctreeNode& n = part.nodes[level][index];
+      n.first = std::uint32_t(part.indices.size());
+      n.count = std::uint32_t(list.size());
+      part.indices.insert(part.indices.end(), list.begin(), list.end());
+      if (entries.fetch_add(list.size()) + list.size() > budget) overflow = true;
+      return;
+    }
+    // Children's lists live one level down, so the children's own splits (which write the
+    // level below theirs) leave them alone.
+    std::array<std::vector<std::uint32_t>, 8>& lists = children[level + 1];
+    const float half = 0.5f * (box.hi.x - box.lo.x);
+    std::uint8_t mask = 0;  // the children geometry touches
+    for (int c = 0; c < 8; ++c) {
+      lists[c].clear();
+      const glm::uvec3 childCell = cell * 2u + glm::uvec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+      if (!surfaces || surfaces->occupied(level + 1, childCell)) mask |= std::uint8_t(1u << c);
+    }
+    const glm::vec3 mid = box.lo + glm::vec3(half);
+    const float childRho = 0.8660254f * half + margin;  // a child's bounding sphere
+    for (std::uint32_t slot : list) {
+      const Support& sp = supports[slot];
+      // Squared distances from the bounding sphere's centre to the lower and upper half of
+      // the node along each axis; a child's is the sum of its halves'.
+      const glm::vec3 low = glm::max(glm::max(box.lo - sp.centre, sp.centre - mid), glm::vec3(0.0f));
+      const glm::vec3 high = glm::max(glm::max(mid - sp.centre, sp.centre - box.hi), glm::vec3(0.0f));
+      const glm::vec3 low2 = low * low, high2 = high * high;
+      const float reach = (sp.radius + margin) * (sp.radius + margin);
+      for (int c = 0; c < 8; ++c) {
+        if (!(mask & (1u << c))) continue;
+        const float d2 = ((c & 1) ? high2.x : low2.x) + ((c & 2) ? high2.y : low2.y) +
+                         ((c & 4) ? high2.z : low2.z);
+        if (d2 > reach) continue;
+        if (sp.spot) {
+          const glm::vec3 centre =
+              box.lo + (glm::vec3(c & 1, (c >> 1) & 1, (c >> 2) & 1) + 0.5f) * half;
+          if (!withinCone(sp, centre, childRho)) continue;
+        }
+        lists[c].push_back(slot);
+      }
+    }
+    for (int c = 0; c < 8; ++c) {
+      if (lists[c].empty()) mask &= std::uint8_t(~(1u << c));
+    }
+    std::vector<OctreeNode>& next = part.nodes[level + 1];
+    const std::uint32_t firstChild = std::uint32_t(next.size());
+    for (int c = 0; c < 8; ++c) {
+      if (!(mask & (1u << c))) continue;
+      OctreeNode child;
+      child.cell = cell * 2u + glm::uvec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+      next.push_back(child);
+    }
+    OctreeNode& n = part.nodes[level][index];
+    n.leaf = false;
+    n.childMask = mask;
+    n.firstChild = firstChild;
+    std::size_t child = firstChild;
+    for (int c = 0; c < 8; ++c) {
+      if (mask & (1u << c)) node(part, level + 1, child++, lists[c]);
+    }
+  }
+};
+
+}  // namespace
+
+namespace {
+
+// Builds the subtrees below the task level on `threads` threads and splices them into
+// `main`, whose task-level nodes are their roots.
+void buildTasks(Build& top, Part& main, int threads) {
+  const int levels = top.octree.levels;
+  std::vector<Part> parts(top.tasks.size());
+  std::atomic<std::size_t> next{0};
+  auto work = [&](int) {
+    Build build(top.octree, top.supports, top.margin, top.entries, top.overflow);
+    build.surfaces = top.surfaces;
+    build.budget = top.budget;
+    for (std::size_t t; (t = next.fetch_add(1)) < top.tasks.size();) {
+      Part& part = parts[t];
+      part.nodes.resize(std::size_t(levels));
+      part.nodes[top.taskLevel].push_back(main.nodes[top.taskLevel][top.tasks[t].index]);
+      build.node(part, top.taskLevel, 0, top.tasks[t].list);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(work, i);
+  work(0);
+  for (std::thread& th : pool) th.join();
+
+  for (std::size_t t = 0; t < parts.size(); ++t) {
+    const std::uint32_t indexBase = std::uint32_t(main.indices.size());
+    std::vector<std::uint32_t> base(std::size_t(levels) + 1, 0);
+    for (int level = 0; level < levels; ++level) base[level] = std::uint32_t(main.nodes[level].size());
+    for (int level = top.taskLevel; level < levels; ++level) {
+      for (OctreeNode n : parts[t].nodes[level]) {
+        if (n.leaf) {
+          n.first += indexBase;
+        } else {
+          n.firstChild += base[level + 1];
+        }
+        if (level == top.taskLevel) {
+          main.nodes[level][top.tasks[t].index] = n;
+        } else {
+          main.nodes[level].push_back(n);
+        }
+      }
+    }
+    main.indices.insert(main.indices.end(), parts[t].indices.begin(), parts[t].indices.end());
+  }
+}
+
+Box grow(const Box& b, float by) { return {b.lo - glm::vec3(by), b.hi + glm::vec3(by)}; }
+
+Box sphereBox(const Support& s) {
+  return {s.centre - glm::vec3(s.radius), s.centre + glm::vec3(s.radius)};
+}
+
+// Sorts the ranged lights into the octree's, the global list and the unreached, and sets
+// the octree's domain: the geometry bounds met by the supports. Returns the margin.
+float classify(const std::vector<Light>& lights, const LightOrder& order, const Bounds& geometry,
+               std::vector<Support>& supports, std::vector<std::uint32_t>& inOctree,
+               LightOctree& o, Box& domain) {
+  Box scene{glm::vec3(0.0f), glm::vec3(0.0f)};
+  bool first = true;
+  for (std::size_t slot = 0; slot < order.scene.size(); ++slot) {
+    const Light& light = lights[order.scene[slot]];
+    if (light.type == LightType::Directional || !(light.range > 0.0f)) {
+      o.global.push_back(std::uint32_t(slot));
+      continue;
+    }
+    supports[slot] = supportOf(light);
+    const Box b = sphereBox(supports[slot]);
+    scene = first ? b : Box{glm::min(scene.lo, b.lo), glm::max(scene.hi, b.hi)};
+    first = false;
+  }
+  if (!geometry.empty) scene = {geometry.min, geometry.max};
+  const float scale = std::max({glm::length(scene.lo), glm::length(scene.hi),
+                                glm::length(scene.hi - scene.lo), 1e-3f});
+  const float margin = 1e-5f * scale;
+  bool any = false;
+  domain = scene;
+  for (std::size_t slot = 0; slot < order.scene.size(); ++slot) {
+    const Support& s = supports[slot];
+    if (!(s.range > 0.0f)) continue;
+    const int index = order.scene[slot];
+    if (!overlaps(s, grow(scene, margin), margin)) {
+      o.unreached.push_back(index);
+    } else if (!geometry.empty && contains(s, grow(scene, margin), margin)) {
+      o.wholeScene.push_back(index);
+      o.global.push_back(std::uint32_t(slot));
+    } else {
+      inOctree.push_back(std::uint32_t(slot));
+      const Box b = sphereBox(s);
+      const Box met{glm::max(b.lo, scene.lo), glm::min(b.hi, scene.hi)};
+      domain = any ? Box{glm::min(domain.lo, met.lo), glm::max(domain.hi, met.hi)} : met;
+      any = true;
+    }
+  }
+  std::sort(o.global.begin(), o.global.end());
+  return margin;
+}
+
+// Sets the levels, leaf edge and origin for a leaf edge of at least `leafEdge`.
+void shape(LightOctree& o, const Box& domain, float margin, float leafEdge) {
+  const glm::vec3 size = domain.hi - domain.lo;
+  const float extent = std::max({size.x, size.y, size.z, 0.0f}) + 4.0f * margin;
+  o.levels = 1;
+  while (o.levels < kMaxOctreeLevels && leafEdge * float(1u << (o.levels - 1)) < extent) ++o.levels;
+  o.leafEdge = std::max(leafEdge, extent / float(1u << (o.levels - 1)));
+  o.origin = domain.lo - glm::vec3(2.0f * margin);
+}
+
+}  // namespace
+
+float octreeLeafEdge(const std::vector<Light>& lights) {
+  std::vector<float> radii;
+  for (const Light& l : lights) {
+    if (l.type != LightType::Directional && l.range > 0.0f) radii.push_back(supportOf(l).radius);
+  }
+  if (radii.empty()) return 0.0f;
+  std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+  return 0.25f * radii[radii.size() / 2];
+}
+
+std::size_t LightOctree::nodeCount() const {
+  std::size_t n = 0;
+  for (const auto& level : nodes) n += level.size();
+  return n;
+}
+
+LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scene,
+                             const OctreeOptions& options) {
+  LightOctree o;
+  const Bounds geometry = scene.bounds();
+  const LightOrder order = lightOrder(lights);
+  std::vector<Support> supports(order.scene.size());
+  std::vector<std::uint32_t> inOctree;
+  Box domain;
+  const float margin = classify(lights, order, geometry, supports, inOctree, o, domain);
+  std::vector<Light> ranged;
+  for (std::uint32_t slot : inOctree) ranged.push_back(lights[order.scene[slot]]);
+  float leafEdge = options.leafEdge > 0.0f ? options.leafEdge : octreeLeafEdge(ranged);
+  if (!(leafEdge > 0.0f)) leafEdge = 1.0f;
+  const int threads = options.threads > 0
+                          ? options.threads
+                          : std::max(1, int(std::thread::hardware_concurrency()));
+  for (;; leafEdge *= 2.0f) {
+    shape(o, domain, margin, leafEdge);
+    std::atomic<std::size_t> entries{0};
+    std::atomic<bool> overflow{false};
+    Build top(o, supports, margin, entries, overflow);
+    top.taskLevel = o.levels > 3 ? 2 : -1;
+    top.budget = std::min(kMaxOctreeIndices,
+                          std::max(kOctreeEntriesPerLight * inOctree.size(), kMinOctreeBudget));
+    SurfaceCells surfaces;
+    if (!geometry.empty) {
+      surfaces = surfaceCells(scene, o.origin, o.leafEdge, o.levels, margin);
+      top.surfaces = &surfaces;
+    }
+    Part main;
+    main.nodes.resize(std::size_t(o.levels));
+    main.nodes[0].push_back(OctreeNode{});
+    if (!top.surfaces || top.surfaces->occupied(0, glm::uvec3(0))) top.node(main, 0, 0, inOctree);
+    if (top.taskLevel >= 0) buildTasks(top, main, threads);
+    if (overflow) continue;
+    o.nodes = std::move(main.nodes);
+    o.indices = std::move(main.indices);
+    break;
+  }
+  for (const auto& level : o.nodes) {
+    for (const OctreeNode& n : level) {
+      if (n.leaf) o.maxLeafCount = std::max(o.maxLeafCount, n.count);
+    }
+  }
+  return o;
+}
+
+OctreeList octreeListAt(const LightOctree& o, glm::vec3 p) {
+  const int deepest = o.levels - 1;
+  const float cells = float(1u << deepest);
+  const glm::vec3 q = glm::clamp(glm::floor((p - o.origin) / o.leafEdge), glm::vec3(0.0f),
+                                 glm::vec3(cells - 1.0f));
+  const glm::uvec3 cell(q);
+  std::size_t index = 0;
+  for (int level = 0;; ++level) {
+    const OctreeNode& n = o.nodes[level][index];
+    if (n.leaf) return {n.first, n.count};
+    const glm::uvec3 c = (cell >> std::uint32_t(deepest - level - 1)) & 1u;
+    const unsigned octant = c.x + 2 * c.y + 4 * c.z;
+    if (!(n.childMask & (1u << octant))) return {0, 0};
+    index = n.firstChild + std::size_t(__builtin_popcount(n.childMask & ((1u << octant) - 1)));
+  }
+}
+
+bool lightReaches(const Light& light, glm::vec3 p) {
+  if (light.type == LightType::Directional || !(light.range > 0.0f)) return true;
+  const glm::dvec3 v = glm::dvec3(p) - glm::dvec3(light.position);
+  const double d = glm::length(v);
+  if (d >= double(light.range)) return false;
+  if (light.type != LightType::Spot || d == 0.0) return true;
+  const double outer = std::min(double(light.outerConeAngle), 1.5707963267948966);
+  return glm::dot(v / d, glm::normalize(glm::dvec3(light.direction))) > std::cos(outer);
+}
+
+}  // namespace manylight
