@@ -32,8 +32,9 @@ struct LightSource {
 // What animates the lights placed by `sources` (one per Scene light, in order), from every
 // animation. Channels whose KHR_animation_pointer targets neither a light nor a node's
 // translation, rotation or scale are ignored. Throws SceneError "animation A: channel C:
-// problem" for a broken track, and "animation A: channel C: pointer 'P': problem" for a
-// pointer into KHR_lights_punctual that names no light or no animatable property of it.
+// problem" for a broken track (or negative values, or cone angles above π/2) and for a track
+// on a node with a matrix, and "animation A: channel C: pointer 'P': problem" for a pointer
+// into KHR_lights_punctual that names no light, or no animatable property of it.
 LightAnimation lightAnimation(const tinygltf::Model& model,
                               const std::vector<LightSource>& sources);
 

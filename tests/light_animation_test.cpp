@@ -187,6 +187,7 @@ TEST(LightAnimation, StepKeysHoldUntilTheNextKey) {
   EXPECT_EQ(at(s, 2.0f)[0].intensity, 9.0f);
   EXPECT_EQ(at(s, 1.5f)[0].position, glm::vec3(0, 6, 0));
   EXPECT_EQ(at(s, 2.5f)[0].position, glm::vec3(0, 6, 6));
+  EXPECT_EQ(s.ignoredExtensions, std::vector<std::string>{}) << "KHR_animation_pointer is used";
   expectNear(at(s, 0.5f)[0].colour, {0.5f, 0.5f, 0});
   expectNear(at(s, 1.25f)[0].colour, {0, 0.75f, 0.25f});
 }
