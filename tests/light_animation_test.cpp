@@ -192,6 +192,26 @@ TEST(LightAnimation, StepKeysHoldUntilTheNextKey) {
   expectNear(at(s, 1.25f)[0].colour, {0, 0.75f, 0.25f});
 }
 
+// Spot light 0: intensity a cubic spline from 2 to 6 over t in [0, 2] with zero tangents
+// (a smoothstep); its inner cone angle animated from 0.1 to 0.6, past its still outer 0.5.
+TEST(LightAnimation, CubicSplinesAndConesThatCrossStayValid) {
+  const Scene s = loadGltf(lightScene(
+      "cubic", {{{0, 2}, "SCALAR"}, {{0, 2, 0, 0, 6, 0}, "SCALAR"}, {{0.1f, 0.6f}, "SCALAR"}},
+      R"("nodes": [{"extensions": {"KHR_lights_punctual": {"light": 0}}}],
+         "scenes": [{"nodes": [0]}],
+         "animations": [{"channels": [)" +
+          channel(0, pointer("/extensions/KHR_lights_punctual/lights/0/intensity")) + "," +
+          channel(1, pointer("/extensions/KHR_lights_punctual/lights/0/spot/innerConeAngle")) +
+          R"(], "samplers": [)" + sampler(0, 1, "CUBICSPLINE") + "," + sampler(0, 2) + "]}], " +
+          lights(R"({"type": "spot", "spot": {"innerConeAngle": 0.1, "outerConeAngle": 0.5}})")));
+  EXPECT_NEAR(at(s, 1.0f)[0].intensity, 4.0f, 1e-5f);
+  EXPECT_NEAR(at(s, 0.5f)[0].intensity, 2.0f + 4.0f * (3 * 0.0625f - 2 * 0.015625f), 1e-5f);
+  EXPECT_NEAR(at(s, 0.8f)[0].innerConeAngle, 0.3f, 1e-5f);
+  const Light end = at(s, 2.0f)[0];
+  EXPECT_EQ(end.outerConeAngle, 0.5f);
+  EXPECT_EQ(end.innerConeAngle, std::nextafter(0.5f, 0.0f)) << "kept below the outer angle";
+}
+
 // Light 0 on nodes 0 and 1 (two Scene lights), its intensity animated over t in [0, 1];
 // node 1 moves over [0, 3]; light 1 on node 2 is still.
 TEST(LightAnimation, ChangedListsOnlyTheLightsThatChanged) {
