@@ -290,14 +290,19 @@ Light Converter::light(int index, const glm::mat4& world) const {
       throw SceneError(where + ": spot cone angles must satisfy 0 <= inner < outer <= pi/2");
     }
   }
-  l.position = glm::vec3(world[3]);
-  const glm::vec3 dir = glm::vec3(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
-  const float len = glm::length(dir);
-  if (!(len > 0.0f) || !std::isfinite(len)) {
+  if (!placeLight(l, world)) {
     throw SceneError(where + ": the node's transform collapses the light direction");
   }
-  l.direction = dir / len;
   return l;
+}
+
+bool placeLight(Light& l, const glm::mat4& world) {
+  const glm::vec3 dir = glm::vec3(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+  const float len = glm::length(dir);
+  if (!(len > 0.0f) || !std::isfinite(len)) return false;
+  l.position = glm::vec3(world[3]);
+  l.direction = dir / len;
+  return true;
 }
 
 }  // namespace manylight::gltf

@@ -24,6 +24,11 @@ long long triangleCount(int mode, long long count);
 // The rotation and translation of `world`, scale removed (cameras).
 glm::mat4 withoutScale(const glm::mat4& world);
 
+// Places `light` by a node's world transform: position its origin, direction its −Z
+// normalised (node scale changes neither range nor cone). False, and `light` unchanged, when
+// the transform collapses the direction.
+bool placeLight(Light& light, const glm::mat4& world);
+
 class Converter {
  public:
   // `creaseRadians`: for normals built where a primitive has none (scene/half_edge.h).

@@ -17,6 +17,10 @@ const std::set<std::string> kSupportedRequired = {
     "KHR_texture_transform",   "KHR_materials_emissive_strength",
     "KHR_materials_unlit",     "KHR_draco_mesh_compression",
     "EXT_meshopt_compression", "KHR_materials_pbrSpecularGlossiness"};
+// Optional extensions used in part, so not listed as ignored: KHR_animation_pointer's
+// channels on lights and on nodes move and change lights (scene/light_animation.h); its other
+// pointers (materials, cameras, morph weights) are ignored. Required, it is refused.
+const std::set<std::string> kUsedInPart = {"KHR_animation_pointer"};
 // Required extensions refused with a reason of their own.
 const std::map<std::string, std::string> kRefusedRequired = {
     {"KHR_texture_basisu", "Basis Universal (KTX2) textures have no decoder here"}};
@@ -71,7 +75,7 @@ void checkRequirementsInJson(const std::string& path) {
 std::vector<std::string> ignoredExtensions(const std::vector<std::string>& used) {
   std::vector<std::string> out;
   for (const std::string& ext : used) {
-    if (!kSupportedRequired.count(ext)) out.push_back(ext);
+    if (!kSupportedRequired.count(ext) && !kUsedInPart.count(ext)) out.push_back(ext);
   }
   return out;
 }

@@ -6,8 +6,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -15,8 +13,8 @@
 
 #include "base/error.h"
 #include "scene/asset_files.h"
-#include "scene/camera_animation.h"
 #include "scene/gltf_accessors.h"
+#include "scene/gltf_animation.h"
 #include "scene/gltf_convert.h"
 #include "scene/gltf_extensions.h"
 #include "scene/gltf_parse.h"
@@ -78,27 +76,6 @@ bool decodeImageForTinygltf(tinygltf::Image* image, const int index, std::string
     if (err) *err += e.what();
     return false;
   }
-}
-
-glm::mat4 localTransform(const tinygltf::Node& node) {
-  if (node.matrix.size() == 16) {
-    glm::dmat4 m;
-    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = node.matrix[i];
-    return glm::mat4(m);
-  }
-  glm::dmat4 m(1.0);
-  if (node.translation.size() == 3) {
-    m = glm::translate(m,
-                       glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
-  }
-  if (node.rotation.size() == 4) {
-    const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-    m *= glm::mat4_cast(glm::normalize(q));
-  }
-  if (node.scale.size() == 3) {
-    m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
-  }
-  return glm::mat4(m);
 }
 
 int nodeLight(const tinygltf::Node& node) {
@@ -170,7 +147,7 @@ class SceneWalker {
       }
       visited[item.node] = true;
       const tinygltf::Node& node = model_.nodes[item.node];
-      const glm::mat4 world = item.parent * localTransform(node);
+      const glm::mat4 world = item.parent * gltf::localTransform(node);
       place(item.node, node, world);
       for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) {
         stack.push_back({*c, world});
@@ -187,6 +164,9 @@ class SceneWalker {
       }
     }
   }
+
+  // Where each of Scene::lights comes from, in order.
+  const std::vector<gltf::LightSource>& lightSources() const { return lightSources_; }
 
  private:
   void place(int index, const tinygltf::Node& node, const glm::mat4& world) {
@@ -208,90 +188,19 @@ class SceneWalker {
       if (!cameraPlaced_[node.camera]) {
         cameraPlaced_[node.camera] = true;
         scene_.cameras[node.camera].world = gltf::withoutScale(world);
-        scene_.cameras[node.camera].animation = cameraAnimation(index);
+        scene_.cameras[node.camera].animation = gltf::cameraAnimation(model_, parent_, index);
       }
     }
     const int light = nodeLight(node);
     if (light >= 0) {
       // Past the budget, lights are only counted (nothing more is stored), for the message.
-      if (++lightsSeen_ <= options_.lightBudget)
+      if (++lightsSeen_ <= options_.lightBudget) {
         scene_.lights.push_back(convert_.light(light, world));
+        lightSources_.push_back({index, light});
+      }
     } else if (light < -1) {
       throw SceneError(where + ": light " + std::to_string(light) + " does not exist");
     }
-  }
-
-  // The first animation that moves node `index` or an ancestor: the chain from the root
-  // down to the node, with that animation's tracks on each.
-  CameraAnimation cameraAnimation(int index) const {
-    std::vector<int> chain;
-    for (int n = index; n >= 0 && chain.size() <= model_.nodes.size(); n = parent_[n])
-      chain.push_back(n);
-    std::reverse(chain.begin(), chain.end());
-    for (std::size_t a = 0; a < model_.animations.size(); ++a) {
-      const tinygltf::Animation& anim = model_.animations[a];
-      CameraAnimation out;
-      bool moves = false;
-      for (int n : chain) {
-        const tinygltf::Node& node = model_.nodes[n];
-        AnimatedNode an;
-        an.hasMatrix = node.matrix.size() == 16;
-        an.matrix = localTransform(node);
-        if (node.translation.size() == 3)
-          an.translation =
-              glm::vec3(glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
-        if (node.rotation.size() == 4) {
-          an.rotation = glm::vec4(
-              glm::dvec4(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]));
-        }
-        if (node.scale.size() == 3)
-          an.scale = glm::vec3(glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
-        for (std::size_t c = 0; c < anim.channels.size(); ++c) {
-          const tinygltf::AnimationChannel& ch = anim.channels[c];
-          if (ch.target_node != n) continue;
-          const std::string where =
-              "animation " + std::to_string(a) + ": channel " + std::to_string(c);
-          AnimationTrack t;
-          if (ch.target_path == "translation") {
-            t.path = AnimationTrack::Translation;
-          } else if (ch.target_path == "rotation") {
-            t.path = AnimationTrack::Rotation;
-          } else if (ch.target_path == "scale") {
-            t.path = AnimationTrack::Scale;
-          } else {
-            continue;  // morph target weights do not move a camera
-          }
-          if (an.hasMatrix)
-            throw SceneError(where + ": node " + std::to_string(n) +
-                             " has a matrix and cannot be animated");
-          if (ch.sampler < 0 || std::size_t(ch.sampler) >= anim.samplers.size()) {
-            throw SceneError(where + ": sampler " + std::to_string(ch.sampler) + " does not exist");
-          }
-          const tinygltf::AnimationSampler& sampler = anim.samplers[ch.sampler];
-          if (sampler.interpolation == "STEP") {
-            t.interpolation = AnimationTrack::Step;
-          } else if (sampler.interpolation == "CUBICSPLINE") {
-            t.interpolation = AnimationTrack::CubicSpline;
-          } else if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") {
-            t.interpolation = AnimationTrack::Linear;
-          } else {
-            throw SceneError(where + ": unknown interpolation '" + sampler.interpolation + "'");
-          }
-          t.times = gltf::readFloats(model_, sampler.input, 1, where + " input");
-          t.values =
-              gltf::readFloats(model_, sampler.output, t.path == AnimationTrack::Rotation ? 4 : 3,
-                               where + " output");
-          const std::string problem = checkTrack(t);
-          if (!problem.empty()) throw SceneError(where + ": " + problem);
-          out.duration = std::max(out.duration, t.times.back());
-          an.tracks.push_back(std::move(t));
-          moves = true;
-        }
-        out.chain.push_back(std::move(an));
-      }
-      if (moves) return out;
-    }
-    return {};
   }
 
   const tinygltf::Model& model_;
@@ -301,6 +210,7 @@ class SceneWalker {
   std::vector<bool> cameraPlaced_;
   std::vector<int> parent_;
   std::size_t lightsSeen_ = 0;
+  std::vector<gltf::LightSource> lightSources_;
 };
 
 // Throws when the meshes hold more triangles than `limit`, from the accessor counts alone.
@@ -440,7 +350,9 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     checkTriangleCount(model, options.maxTriangles);
     gltf::Converter convert(model, scene, glm::radians(options.creaseAngleDegrees));
     checkStructure(model, convert);
-    SceneWalker(model, scene, convert, options).walk();
+    SceneWalker walker(model, scene, convert, options);
+    walker.walk();
+    scene.lightAnimation = gltf::lightAnimation(model, walker.lightSources());
   } catch (const SceneError& e) {
     throw SceneError(path + ": " + e.what());
   }

@@ -15,6 +15,7 @@ namespace {
 
 const char* const kDraco = "KHR_draco_mesh_compression";
 const char* const kMeshopt = "EXT_meshopt_compression";
+const char* const kPointer = "KHR_animation_pointer";
 // What a placeholder buffer gets instead of no data: tinygltf refuses an empty data: URI.
 const char* const kPlaceholderUri = "data:application/octet-stream;base64,AA==";
 
@@ -26,6 +27,7 @@ struct Amendments {
     int accessor;
   };
   std::vector<HeldIndices> held;
+  std::size_t pointerChannels = 0;  // given node −1, which tinygltf also gives a target without one
 };
 
 bool uses(const nlohmann::json& j, const char* extension) {
@@ -75,16 +77,39 @@ void holdDracoIndices(nlohmann::json& j, Amendments* out) {
   }
 }
 
+// Animation channels whose target has no node (KHR_animation_pointer's): tinygltf drops
+// them, and with them the channel numbering; they get node −1.
+void givePointerChannelsANode(nlohmann::json& j, Amendments* out) {
+  const auto animations = j.find("animations");
+  if (animations == j.end() || !animations->is_array()) return;
+  for (nlohmann::json& animation : *animations) {
+    if (!animation.is_object() || !animation.contains("channels") ||
+        !animation["channels"].is_array())
+      continue;
+    for (nlohmann::json& channel : animation["channels"]) {
+      if (!channel.is_object() || !channel.contains("target")) continue;
+      nlohmann::json& target = channel["target"];
+      if (!target.is_object() || target.contains("node")) continue;
+      target["node"] = -1;
+      ++out->pointerChannels;
+    }
+  }
+}
+
 // The JSON amended as the header says; "" when nothing changes (also for JSON that tinygltf
 // will refuse for itself).
 std::string amendedJson(std::string_view json, bool binary, Amendments* out) {
-  if (json.find(kDraco) == std::string_view::npos && json.find(kMeshopt) == std::string_view::npos)
+  if (json.find(kDraco) == std::string_view::npos &&
+      json.find(kMeshopt) == std::string_view::npos &&
+      json.find(kPointer) == std::string_view::npos)
     return "";
   nlohmann::json j = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
   if (j.is_discarded() || !j.is_object()) return "";
   if (uses(j, kMeshopt)) givePlaceholdersData(j, binary, out);
   if (uses(j, kDraco)) holdDracoIndices(j, out);
-  return out->placeholders.empty() && out->held.empty() ? "" : j.dump();
+  if (uses(j, kPointer)) givePointerChannelsANode(j, out);
+  const bool same = out->placeholders.empty() && out->held.empty() && out->pointerChannels == 0;
+  return same ? "" : j.dump();
 }
 
 std::uint32_t word(const unsigned char* p) {

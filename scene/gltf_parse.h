@@ -8,6 +8,8 @@
 // - EXT_meshopt_compression: a placeholder buffer, with no uri and no data, only the
 //   byteLength of the views decoded into it: tinygltf requires a uri in a .gltf and takes a
 //   GLB's from the binary chunk. It is given a one-byte data: URI instead, emptied after.
+// - KHR_animation_pointer: a channel target without a node: tinygltf drops the channel. It
+//   is given node −1, what tinygltf sets for a target without one.
 // Internal to scene/.
 #include <cstdint>
 #include <string>

@@ -7,6 +7,9 @@
 #include <utility>
 #include <vector>
 
+#include "scene/animation_track.h"
+#include "scene/light_animation.h"
+
 namespace manylight {
 
 enum class LightType : std::uint8_t { Point, Spot, Directional };
@@ -126,21 +129,7 @@ struct MeshInstance {
 
 // A glTF animation of a camera's node and its ancestors (scene/camera_animation.h evaluates
 // it): the chain from the root to the camera's node, each node's rest transform and the
-// tracks that move it.
-struct AnimationTrack {
-  enum Path : std::uint8_t { Translation, Rotation, Scale } path = Translation;
-  enum Interpolation : std::uint8_t { Linear, Step, CubicSpline } interpolation = Linear;
-  std::vector<float> times;   // seconds, increasing
-  std::vector<float> values;  // 3 (4 for rotation, xyzw) floats per key; ×3 for cubic spline
-};
-struct AnimatedNode {
-  glm::mat4 matrix{1.0f};  // used when the node gives a matrix (such nodes are not animated)
-  bool hasMatrix = false;
-  glm::vec3 translation{0.0f};
-  glm::vec4 rotation{0.0f, 0.0f, 0.0f, 1.0f};  // quaternion xyzw
-  glm::vec3 scale{1.0f};
-  std::vector<AnimationTrack> tracks;
-};
+// tracks that move it (scene/animation_track.h).
 struct CameraAnimation {
   std::vector<AnimatedNode> chain;  // root first, the camera's node last; empty: not animated
   float duration = 0.0f;            // seconds: the last key time of any track
@@ -170,6 +159,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<Light> lights;
+  // How glTF animations move and change `lights` (scene/light_animation.h).
+  LightAnimation lightAnimation;
   std::vector<Camera> cameras;  // one per glTF camera, placed by the first node using it
   std::vector<std::string> warnings;
   // extensionsUsed that change nothing here (optional appearance extensions such as
