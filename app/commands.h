@@ -57,12 +57,18 @@ bool parseSize(const std::string& text, int* width, int* height);
 bool sizeFitsContext(int width, int height);
 // The node colour coding's figures for --stats.
 nlohmann::json nodeColourStats(const NodeColourCoder& c);
+// The octree method's figures for --stats: its octree's, and the frame's per-pixel lists.
+nlohmann::json octreeStats(const OctreeSummary& o, const OctreeFrameStats& frame);
+// One line naming the lights an octree holds at every pixel because their support holds
+// the whole scene, or "" when there are none.
+std::string wholeSceneNote(const std::string& scene, const OctreeSummary& o);
 // A context, or null after saying why there is none.
 std::unique_ptr<gl::Context> openContext(gl::Backend backend, bool verbose);
 
 struct SceneArgs {
   std::string lightList, treeSplit = "metric", nodeColour = "rgb9e5";
   std::size_t lightBudget = 1u << 20;
+  float octreeLeaf = 0.0f;  // 0: the rule of bake/light_octree.h
   LoadOptions limits;
   CLI::Option* splitOption = nullptr;
   CLI::Option* colourOption = nullptr;
@@ -77,6 +83,11 @@ struct SceneArgs {
     t.split = treeSplit == "metric" ? Split::Metric : Split::LongestAxis;
     t.nodeColour = nodeColour == "fitted" ? NodeColourCoding::Fitted : NodeColourCoding::Rgb9e5;
     return t;
+  }
+  OctreeOptions octree() const {
+    OctreeOptions o;
+    o.leafEdge = octreeLeaf;
+    return o;
   }
 };
 

@@ -149,9 +149,10 @@ void addMethodOptions(CLI::App* app, MethodArgs& a) {
       app->add_option(
              "--method", a.method,
              "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
-             "cuts through a light tree), lightcuts-distance (cuts by radius of influence)")
+             "cuts through a light tree), lightcuts-distance (cuts by radius of influence), "
+             "octree (exact: each pixel's lights from a hashed light octree)")
           ->capture_default_str()
-          ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance"}));
+          ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance", "octree"}));
   app->add_option("--error", a.error, "lightcuts: relative error ε of the stopping rule")
       ->capture_default_str()
       ->check(CLI::Range(1e-6f, 1.0f));
@@ -179,6 +180,37 @@ LightcutsSettings MethodArgs::lightcuts() const {
   return s;
 }
 
+nlohmann::json octreeStats(const OctreeSummary& o, const OctreeFrameStats& frame) {
+  return {{"levels", o.levels},
+          {"leaf_edge", o.leafEdge},
+          {"nodes", o.nodes},
+          {"hash_slots", o.slots},
+          {"hash_offsets", o.offsetEntries},
+          {"hash_attempts", o.hashAttempts},
+          {"index_list_length", o.indices},
+          {"bytes", o.bytes},
+          {"global_lights", o.globalCount},
+          {"whole_scene_lights", o.wholeScene.size()},
+          {"unreached_lights", o.unreached},
+          {"max_leaf_list", o.maxLeafCount},
+          {"covered_pixels", frame.pixels},
+          {"list_entries_per_pixel", frame.listEntries},
+          {"light_evaluations_per_pixel", frame.lightEvaluations},
+          {"lights_reaching_per_pixel", frame.lightsReaching}};
+}
+
+std::string wholeSceneNote(const std::string& scene, const OctreeSummary& o) {
+  if (o.wholeScene.empty()) return {};
+  std::string names;
+  for (std::size_t i = 0; i < o.wholeScene.size() && i < 8; ++i)
+    names += (i ? ", " : "") + std::to_string(o.wholeScene[i]);
+  if (o.wholeScene.size() > 8) names += ", …";
+  return scene + ": warning: " + std::to_string(o.wholeScene.size()) +
+         " ranged lights reach the whole scene (their range holds its bounds), so the octree "
+         "leaves them to the list every pixel evaluates: light " +
+         names;
+}
+
 void addSceneOptions(CLI::App* app, SceneArgs& a) {
   a.splitOption =
       app->add_option(
@@ -195,6 +227,11 @@ void addSceneOptions(CLI::App* app, SceneArgs& a) {
              "a power law fitted to the scene, shared exponent)")
           ->capture_default_str()
           ->check(CLI::IsMember({"fitted", "rgb9e5"}));
+  app->add_option("--octree-leaf", a.octreeLeaf,
+                  "octree: edge of the smallest cells, in scene units (0: a quarter of the "
+                  "median light range; see docs/octree.md)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app->add_option("--lights", a.lightList,
                   "Add point lights from a list: .csv, .json, or the Lightcuts-in-UE4 text dump "
                   "(8-bit sRGB colours; see README)");

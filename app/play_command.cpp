@@ -122,6 +122,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   r.method = a.lighting.parsed();
   r.lightcuts = a.lighting.lightcuts();
   r.lightcuts.trees = a.input.trees();
+  r.octree = a.input.octree();
   request.frames = a.frames;
   request.fps = a.fps;
   request.orbitDegrees = a.orbit;
@@ -134,6 +135,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   for (const std::string& w : baked.scene.warnings)
     std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";
   if (baked.hasTrees) r.prebuiltTrees = &baked.packed;
+  if (baked.hasOctree) r.prebuiltOctree = &baked.octree;
   const std::unique_ptr<gl::Context> context = openContext(backend, a.verbose);
   if (!context) return kExitNoContext;
   if (!sizeFitsContext(r.width, r.height)) return kExitFailure;
@@ -170,6 +172,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         {"exposure_ev", sink.display().exposure},
         {"tone_map", toneMapName(sink.display().toneMap)},
         {"camera_animation", out.animated},
+        {"light_animation", out.lightsAnimated},
         {"load_ms", loadMs},
         {"bake_ms", out.bakeMs},
         {"frame_render_ms", out.renderMs},
@@ -178,7 +181,8 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         {"interrupted", gInterrupted.load()},
         {"output_closed", sink.closed()},
         {"total_ms", msSince(processStart)}};
-    if (r.method != Method::Reference) {
+    if (out.lightsAnimated) stats["frame_move_lights_ms"] = out.moveMs;
+    if (r.method == Method::Lightcuts || r.method == Method::LightcutsDistance) {
       stats["frame_cut_ms"] = out.cutMs;
       stats["frame_cuts_made"] = out.cutsMade;
       stats["frame_cuts_kept"] = out.cutsKept;

@@ -63,6 +63,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
   }
   RenderRequest bakedRequest = request;
   if (baked.hasTrees) bakedRequest.prebuiltTrees = &baked.packed;
+  if (baked.hasOctree) bakedRequest.prebuiltOctree = &baked.octree;
   RenderOutcome out;
   try {
     out = renderScene(scene, bakedRequest);
@@ -106,8 +107,14 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
       {"boundary_edges", scene.topology.boundaryEdges},
       {"non_manifold_edges", scene.topology.nonManifoldEdges},
   };
+  const std::string note = wholeSceneNote(scenePath, out.octree);
+  if (!note.empty()) std::cerr << "manylight: " << note << "\n";
   if (request.aov != Aov::None) {
     stats["aov"] = aovChannel(request.aov).name;
+  } else if (request.method == Method::Octree) {
+    stats["bake_ms"] = out.bakeMs;
+    stats["octree"] = octreeStats(out.octree, out.frame.octree);
+    stats["baked_octree"] = baked.hasOctree;
   } else if (request.method != Method::Reference) {
     const CutStats& c = out.frame.cuts;
     stats["bake_ms"] = out.bakeMs;
@@ -166,6 +173,8 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.aov = parseAov(a.aov);
   request.lightcuts = a.lighting.lightcuts();
   request.lightcuts.trees = a.input.trees();
+  request.octree = a.input.octree();
+  request.octreeStats = !a.statsPath.empty();
   const gl::Backend backend = gl::parseBackend(a.backend);
   std::vector<Thumbnail> jobs;
   if (batch) {

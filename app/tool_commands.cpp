@@ -89,7 +89,7 @@ int runBake(const BakeArgs& a, Clock::time_point processStart) {
     std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";
   const double loadMs = msSince(start);
   start = Clock::now();
-  const BakedScene baked = bakeScene(std::move(scene), a.input.trees());
+  const BakedScene baked = bakeScene(std::move(scene), a.input.trees(), a.input.octree());
   const double bakeMs = msSince(start);
   start = Clock::now();
   writeBakedScene(a.output, baked);

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -83,11 +84,15 @@ std::uint64_t bakedChecksum(std::string_view bytes) {
   return h;
 }
 
-BakedScene bakeScene(Scene scene, const TreeOptions& trees) {
+BakedScene bakeScene(Scene scene, const TreeOptions& trees, const OctreeOptions& octree) {
   BakedScene b;
   b.trees = trees;
   b.hasTrees = !scene.lights.empty();
   if (b.hasTrees) b.packed = packLightTrees(buildLightTrees(scene.lights, trees), trees.nodeColour);
+  b.hasOctree = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+    return l.type != LightType::Directional && l.range > 0.0f;
+  });
+  if (b.hasOctree) b.octree = packLinklessOctree(buildLightOctree(scene.lights, scene, octree));
   b.scene = std::move(scene);
   return b;
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "bake/baked_octree.h"
 #include "bake/light_tree_layout.h"
 #include "scene/camera_animation.h"
 
@@ -113,6 +114,8 @@ std::string section(std::uint32_t which, const BakedScene& b) {
     }
   } else if (which == kTrees) {
     writeTrees(w, b);
+  } else if (which == kOctree) {
+    writeOctree(w, b.octree);
   }
   return std::move(w.bytes());
 }
@@ -360,6 +363,7 @@ std::vector<std::pair<std::uint32_t, std::string>> writeSections(const BakedScen
   std::vector<std::uint32_t> tags = {kScene,     kMaterials, kTextures, kMeshes,
                                      kInstances, kLights,    kCameras};
   if (baked.hasTrees) tags.push_back(kTrees);
+  if (baked.hasOctree) tags.push_back(kOctree);
   std::vector<std::pair<std::uint32_t, std::string>> out;
   for (std::uint32_t t : tags) out.emplace_back(t, section(t, baked));
   return out;
@@ -387,6 +391,10 @@ BakedScene readSections(const std::map<std::uint32_t, std::string_view>& section
     throw BakeError(path + ": the light trees and the lights do not agree");
   }
   if (b.hasTrees) read(kTrees, "light trees", [&](Reader& r) { readTrees(r, b); });
+  b.hasOctree = sections.count(kOctree) > 0;
+  if (b.hasOctree) {
+    read(kOctree, "light octree", [&](Reader& r) { b.octree = readOctree(r, scene.lights.size()); });
+  }
   return b;
 }
 

@@ -7,99 +7,21 @@
 #include <thread>
 
 #include "bake/light_pack.h"
+#include "bake/light_support.h"
 #include "bake/octree_surfaces.h"
 
 namespace manylight {
 
 namespace {
 
-// Where a ranged light can contribute: a ball, cut by a cone for a spot; and the ball
-// around that support used for the coarse tests.
-struct Support {
-  glm::vec3 position{0.0f};
-  float range = 0.0f;
-  glm::vec3 centre{0.0f};  // bounding sphere of the support
-  float radius = 0.0f;
-  bool spot = false;
-  glm::vec3 axis{0.0f};
-  float cosOuter = 0.0f, sinOuter = 1.0f;
-};
-
-struct Box {
-  glm::vec3 lo, hi;
-};
-
-Support supportOf(const Light& light) {
-  Support s;
-  s.position = light.position;
-  s.range = light.range;
-  s.centre = light.position;
-  s.radius = light.range;
-  if (light.type != LightType::Spot) return s;
-  const double outer = std::clamp(double(light.outerConeAngle), 0.0, 1.5707963267948966);
-  s.spot = true;
-  s.axis = glm::normalize(light.direction);
-  s.cosOuter = float(std::cos(outer));
-  s.sinOuter = float(std::sin(outer));
-  // The smallest ball around the cone's cap: through the apex and the rim for a narrow cone,
-  // centred on the rim's plane for a wide one.
-  if (outer <= 0.7853981633974483) {
-    const double r = light.range / (2.0 * std::cos(outer));
-    s.centre = light.position + s.axis * float(r);
-    s.radius = float(r);
-  } else {
-    s.centre = light.position + s.axis * (light.range * s.cosOuter);
-    s.radius = light.range * s.sinOuter;
-  }
-  return s;
-}
-
-float squaredDistanceToBox(glm::vec3 p, const Box& b) {
-  const glm::vec3 d = glm::max(glm::max(b.lo - p, p - b.hi), glm::vec3(0.0f));
-  return glm::dot(d, d);
-}
-
-// Whether the spot's cone may meet the ball of radius `rho` around `c`: in front of the
-// apex, within range, and within the outer angle of the axis plus the ball (conservative:
-// never false where they meet).
-bool withinCone(const Support& s, glm::vec3 c, float rho) {
-  const glm::vec3 v = c - s.position;
-  const float along = glm::dot(v, s.axis);
-  if (along < -rho || along > s.range + rho) return false;
-  // cos · across ≤ rho + sin · along, squared where both sides are non-negative.
-  const float right = rho + s.sinOuter * along;
-  if (right < 0.0f) return false;
-  const float across2 = std::max(glm::dot(v, v) - along * along, 0.0f);
-  return s.cosOuter * s.cosOuter * across2 <= right * right;
-}
-
-bool withinCone(const Support& s, const Box& b, float margin) {
-  return withinCone(s, 0.5f * (b.lo + b.hi), 0.5f * glm::length(b.hi - b.lo) + margin);
-}
-
-// Whether the support may overlap the box grown by `margin` (conservative).
-bool overlaps(const Support& s, const Box& b, float margin) {
-  const float reach = s.radius + margin;
-  if (squaredDistanceToBox(s.centre, b) > reach * reach) return false;
-  return !s.spot || withinCone(s, b, margin);
-}
-
-// Whether every point of the box is inside the support, `margin` from its boundary.
-bool contains(const Support& s, const Box& b, float margin) {
-  const float inner = s.range - margin;
-  if (inner <= 0.0f) return false;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 c((corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y,
-                      (corner & 4) ? b.hi.z : b.lo.z);
-    const glm::vec3 v = c - s.position;
-    const float d2 = glm::dot(v, v);
-    if (d2 >= inner * inner) return false;
-    // Inside the cone with room to spare (the cone and the ball are convex, so the box is
-    // inside both when its corners are).
-    if (s.spot && glm::dot(v, s.axis) < s.cosOuter * std::sqrt(d2) + margin) return false;
-  }
-  return true;
-}
+using octree::Box;
+using octree::Support;
+using octree::contains;
+using octree::grow;
+using octree::overlaps;
+using octree::sphereBox;
+using octree::supportOf;
+using octree::withinCone;
 
 Box cellBox(const LightOctree& o, int level, glm::uvec3 cell) {
   const float edge = o.leafEdge * float(1u << (o.levels - 1 - level));
@@ -125,6 +47,7 @@ struct Build {
   std::atomic<std::size_t>& entries;     // list entries written so far, all parts
   std::atomic<bool>& overflow;
   std::size_t budget = kMaxOctreeIndices;  // list entries at most
+  bool keepEmpty = false;                  // OctreeOptions::dynamic
   // Per level: the lists of the node being split's children (reused down the recursion).
   std::vector<std::array<std::vector<std::uint32_t>, 8>> children;
 
@@ -193,7 +116,7 @@ struct Build {
       }
     }
     for (int c = 0; c < 8; ++c) {
-      if (lists[c].empty()) mask &= std::uint8_t(~(1u << c));
+      if (lists[c].empty() && !keepEmpty) mask &= std::uint8_t(~(1u << c));
     }
     std::vector<OctreeNode>& next = part.nodes[level + 1];
     const std::uint32_t firstChild = std::uint32_t(next.size());
@@ -228,6 +151,7 @@ void buildTasks(Build& top, Part& main, int threads) {
     Build build(top.octree, top.supports, top.margin, top.entries, top.overflow);
     build.surfaces = top.surfaces;
     build.budget = top.budget;
+    build.keepEmpty = top.keepEmpty;
     for (std::size_t t; (t = next.fetch_add(1)) < top.tasks.size();) {
       Part& part = parts[t];
       part.nodes.resize(std::size_t(levels));
@@ -262,17 +186,11 @@ void buildTasks(Build& top, Part& main, int threads) {
   }
 }
 
-Box grow(const Box& b, float by) { return {b.lo - glm::vec3(by), b.hi + glm::vec3(by)}; }
-
-Box sphereBox(const Support& s) {
-  return {s.centre - glm::vec3(s.radius), s.centre + glm::vec3(s.radius)};
-}
-
 // Sorts the ranged lights into the octree's, the global list and the unreached, and sets
 // the octree's domain: the geometry bounds met by the supports. Returns the margin.
 float classify(const std::vector<Light>& lights, const LightOrder& order, const Bounds& geometry,
-               std::vector<Support>& supports, std::vector<std::uint32_t>& inOctree,
-               LightOctree& o, Box& domain) {
+               bool dynamic, std::vector<Support>& supports,
+               std::vector<std::uint32_t>& inOctree, LightOctree& o, Box& domain) {
   Box scene{glm::vec3(0.0f), glm::vec3(0.0f)};
   bool first = true;
   for (std::size_t slot = 0; slot < order.scene.size(); ++slot) {
@@ -296,7 +214,9 @@ float classify(const std::vector<Light>& lights, const LightOrder& order, const 
     const Support& s = supports[slot];
     if (!(s.range > 0.0f)) continue;
     const int index = order.scene[slot];
-    if (!overlaps(s, grow(scene, margin), margin)) {
+    if (dynamic && !geometry.empty && !contains(s, grow(scene, margin), margin)) {
+      inOctree.push_back(std::uint32_t(slot));  // its lists are found wherever it moves
+    } else if (!overlaps(s, grow(scene, margin), margin)) {
       o.unreached.push_back(index);
     } else if (!geometry.empty && contains(s, grow(scene, margin), margin)) {
       o.wholeScene.push_back(index);
@@ -310,6 +230,7 @@ float classify(const std::vector<Light>& lights, const LightOrder& order, const 
     }
   }
   std::sort(o.global.begin(), o.global.end());
+  if (dynamic && !geometry.empty) domain = scene;
   return margin;
 }
 
@@ -328,7 +249,8 @@ void shape(LightOctree& o, const Box& domain, float margin, float leafEdge) {
 float octreeLeafEdge(const std::vector<Light>& lights) {
   std::vector<float> radii;
   for (const Light& l : lights) {
-    if (l.type != LightType::Directional && l.range > 0.0f) radii.push_back(supportOf(l).radius);
+    if (l.type != LightType::Directional && l.range > 0.0f)
+      radii.push_back(octree::supportOf(l).radius);
   }
   if (radii.empty()) return 0.0f;
   std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
@@ -349,9 +271,11 @@ LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scen
   std::vector<Support> supports(order.scene.size());
   std::vector<std::uint32_t> inOctree;
   Box domain;
-  const float margin = classify(lights, order, geometry, supports, inOctree, o, domain);
+  const float margin =
+      classify(lights, order, geometry, options.dynamic, supports, inOctree, o, domain);
   std::vector<Light> ranged;
   for (std::uint32_t slot : inOctree) ranged.push_back(lights[order.scene[slot]]);
+  o.margin = margin;
   float leafEdge = options.leafEdge > 0.0f ? options.leafEdge : octreeLeafEdge(ranged);
   if (!(leafEdge > 0.0f)) leafEdge = 1.0f;
   const int threads = options.threads > 0
@@ -363,6 +287,7 @@ LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scen
     std::atomic<bool> overflow{false};
     Build top(o, supports, margin, entries, overflow);
     top.taskLevel = o.levels > 3 ? 2 : -1;
+    top.keepEmpty = options.dynamic;
     top.budget = std::min(kMaxOctreeIndices,
                           std::max(kOctreeEntriesPerLight * inOctree.size(), kMinOctreeBudget));
     SurfaceCells surfaces;

@@ -27,12 +27,12 @@
 #include <string>
 #include <vector>
 
+#include "bake/octree_layout.h"
 #include "scene/scene.h"
 
 namespace manylight {
 
-// Levels of the octree at most: cells of the deepest level are 2^15 to the root's edge.
-inline constexpr int kMaxOctreeLevels = 16;
+using layout::kMaxOctreeLevels;
 // List entries at most (the light index texture's texels), under llvmpipe's texture buffer
 // limit of 2^27 texels and about 512 MiB of index list; and at most kOctreeEntriesPerLight
 // per light in the octree (or kMinOctreeBudget), so memory grows with the light count.
@@ -44,6 +44,10 @@ struct OctreeOptions {
   // Edge of the smallest cells; 0: octreeLeafEdge's rule.
   float leafEdge = 0.0f;
   int threads = 0;  // 0: the hardware's
+  // For lights that move (bake/octree_update.h): the root covers the whole geometry, every
+  // cell geometry touches below a split node exists (with an empty list where no light
+  // reaches it), and ranged lights that reach no geometry stay octree lights.
+  bool dynamic = false;
 };
 
 // The default leaf edge: a quarter of the median support radius of the ranged lights (a
@@ -71,6 +75,7 @@ struct LightOctree {
   std::vector<int> wholeScene;  // scene indices of ranged lights whose support holds the scene
   std::vector<int> unreached;   // scene indices of ranged lights that reach no geometry
   std::uint32_t maxLeafCount = 0;
+  float margin = 0.0f;  // by which the overlap tests are conservative (float rounding)
   float rootEdge() const { return leafEdge * float(1u << (levels - 1)); }
   std::size_t nodeCount() const;
 };

@@ -46,7 +46,7 @@ void renderTime(benchmark::State& state, Method method) {
   const int w = 640, h = 480;
   double bakeMs = 0.0;
   const std::unique_ptr<Renderer> owned =
-      prepareRenderer(scene, scene.lights, w, h, method, {}, nullptr, &bakeMs);
+      prepareRenderer(scene, scene.lights, w, h, method, {}, {}, &bakeMs);
   Renderer& renderer = *owned;
   const View view = makeView(scene.cameras[0], w, h);
   FrameSettings settings;  // lightcuts defaults: ε = 0.02, node rule

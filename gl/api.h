@@ -44,6 +44,7 @@
   X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                     \
   X(PFNGLBINDBUFFERPROC, glBindBuffer)                           \
   X(PFNGLBUFFERDATAPROC, glBufferData)                           \
+  X(PFNGLBUFFERSUBDATAPROC, glBufferSubData)                     \
   X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers)                 \
   X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)           \
   X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                 \
@@ -76,6 +77,8 @@
   X(PFNGLUNIFORM1FPROC, glUniform1f)                             \
   X(PFNGLUNIFORM2FPROC, glUniform2f)                             \
   X(PFNGLUNIFORM3IPROC, glUniform3i)                             \
+  X(PFNGLUNIFORM1IVPROC, glUniform1iv)                           \
+  X(PFNGLUNIFORM3IVPROC, glUniform3iv)                           \
   X(PFNGLUNIFORM3FVPROC, glUniform3fv)                           \
   X(PFNGLUNIFORM4FVPROC, glUniform4fv)                           \
   X(PFNGLUNIFORMMATRIX3FVPROC, glUniformMatrix3fv)               \

@@ -16,7 +16,10 @@ TextureBuffer uploadTextureBuffer(const void* data, std::size_t texels, GLenum f
   }
   TextureBuffer t;
   glBindBuffer(GL_TEXTURE_BUFFER, t.buffer.id());
-  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(texels * 16), data, GL_STATIC_DRAW);
+  const std::size_t bytes = format == GL_R32UI                              ? 4
+                            : format == GL_RG32UI || format == GL_RGBA16UI ? 8
+                                                                           : 16;
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(texels * bytes), data, GL_STATIC_DRAW);
   glBindTexture(GL_TEXTURE_BUFFER, t.texture.id());
   glTexBuffer(GL_TEXTURE_BUFFER, format, t.buffer.id());
   glBindTexture(GL_TEXTURE_BUFFER, 0);

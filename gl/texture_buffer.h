@@ -12,7 +12,8 @@ struct TextureBuffer {
   Texture texture;
 };
 
-// Uploads `texels` texels of 16 bytes (`format`: GL_RGBA32F or GL_RGBA32UI) from `data`.
+// Uploads `texels` texels of `format` (GL_RGBA32F, GL_RGBA32UI: 16 bytes; GL_RG32UI,
+// GL_RGBA16UI: 8; GL_R32UI: 4) from `data`.
 // Throws GlError naming `what` when the driver's texture buffers are too small.
 TextureBuffer uploadTextureBuffer(const void* data, std::size_t texels, GLenum format,
                                   const std::string& what);

@@ -4,6 +4,7 @@
 
 #include "bake/light_texture_layout.h"
 #include "bake/light_tree_layout.h"
+#include "bake/octree_layout.h"
 #include "cuts/far_field.h"
 #include "cuts/tile_cuts.h"
 #include "scene/shading_model.h"
@@ -56,6 +57,10 @@ std::vector<std::string> referenceDefines(unsigned flags) {
   return definesOf(flags, {"HAS_DIRECTIONAL", "HAS_POINT", "HAS_SPOT", "HAS_SPECULAR"});
 }
 
+std::vector<std::string> octreeDefines(unsigned flags) {
+  return definesOf(flags, {"HAS_SPECULAR"});
+}
+
 std::vector<std::string> gbufferDefines(Aov aov) {
   for (const AovChannel& c : kAovChannels) {
     if (c.aov == aov) return {"AOV", c.define};
@@ -77,6 +82,10 @@ std::vector<ProgramVariants> programs() {
                  "lighting_lightcuts.frag",
                  {"oRadiance", "oCutStats"},
                  lightcutsVariants()});
+  out.push_back({"fullscreen.vert",
+                 "lighting_octree.frag",
+                 {"oRadiance"},
+                 {octreeDefines(0), octreeDefines(kOctreeHasSpecular)}});
   return out;
 }
 
@@ -95,6 +104,9 @@ std::string layoutPrelude() {
   out += constLine("int", "kCutStatsOwnCut", std::to_string(kCutStatsOwnCut));
   out += constLine("int", "kCutStatsOwnCutAtMax", std::to_string(kCutStatsOwnCutAtMax));
   out += constLine("int", "kCutStatsSharedCut", std::to_string(kCutStatsSharedCut));
+  out += constLine("int", "kMaxOctreeLevels", std::to_string(layout::kMaxOctreeLevels));
+  out += constLine("uint", "kOctreeLeafBit", std::to_string(layout::kOctreeLeafBit) + "u");
+  out += constLine("int", "kOctreeEntriesPerPass", std::to_string(layout::kOctreeEntriesPerPass));
   return out;
 }
 

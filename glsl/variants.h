@@ -34,6 +34,12 @@ enum ReferenceFlag : unsigned {
 };
 std::vector<std::string> referenceDefines(unsigned flags);
 
+// glsl/lighting_octree.frag: a specular material.
+enum OctreeFlag : unsigned {
+  kOctreeHasSpecular = 1u << 0,
+};
+std::vector<std::string> octreeDefines(unsigned flags);
+
 // glsl/gbuffer.frag: lit (Aov::None), or one channel of render/aov.h's kAovChannels.
 std::vector<std::string> gbufferDefines(Aov aov);
 
@@ -54,7 +60,7 @@ struct ProgramVariants {
 std::vector<ProgramVariants> programs();
 
 // The GLSL `const` lines of the constants GLSL shares with C++ (scene/shading_model.h,
-// bake/light_texture_layout.h, bake/light_tree_layout.h, cuts/far_field.h,
+// bake/light_texture_layout.h, bake/light_tree_layout.h, bake/octree_layout.h, cuts/far_field.h,
 // cuts/tile_cuts.h, CutStatsKind): the first part of the G-buffer and lighting stages.
 std::string layoutPrelude();
 

@@ -1,9 +1,11 @@
 #pragma once
 // Kiosk playback (`manylight play`): one renderer for the whole run — the scene, its lights
-// and light trees uploaded once — and only the camera changing from frame to frame: the
-// chosen camera's glTF animation when it has one (frame i at i/fps seconds), otherwise a
-// turntable orbit of the camera (or of the thumbnail framing) about the vertical axis
-// through the centre of the scene's bounds.
+// and light trees uploaded once — and the camera changing from frame to frame: the chosen
+// camera's glTF animation when it has one (frame i at i/fps seconds), otherwise a turntable
+// orbit of the camera (or of the thumbnail framing) about the vertical axis through the
+// centre of the scene's bounds. Lights that glTF animates (scene/light_animation.h) play
+// their animation with it: frame i shows them at i/fps seconds, moved in the renderer
+// (Renderer::moveLights).
 #include <atomic>
 #include <functional>
 
@@ -28,12 +30,14 @@ struct PlaybackOutcome {
   int framesRendered = 0;
   bool framed = false;      // no camera: the orbit starts from the thumbnail framing
   bool animated = false;    // the camera's animation was played (no orbit)
+  bool lightsAnimated = false;  // the scene's light animation was played
   bool defaultRig = false;  // no lights: the default rig, fixed to the first frame's camera
   std::size_t lightCount = 0;
   double bakeMs = 0.0;
   std::vector<double> renderMs;         // per frame
   std::vector<double> cutMs;            // per frame: of renderMs, lightcuts' shared cuts on the CPU
   std::vector<int> cutsMade, cutsKept;  // per frame: shared cuts found, and kept
+  std::vector<double> moveMs;           // per frame: moving the lights (light animation only)
   CutStats firstFrameCuts;
 };
 

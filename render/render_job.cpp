@@ -19,13 +19,17 @@ Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* fra
 
 std::unique_ptr<Renderer> prepareRenderer(const Scene& scene, const std::vector<Light>& lights,
                                           int width, int height, Method method,
-                                          const TreeOptions& options, const PackedTrees* baked,
+                                          const BakeOptions& options, BakedLights baked,
                                           double* bakeMs) {
   PackedTrees trees;
+  LinklessOctree octree;
   const auto start = std::chrono::steady_clock::now();
-  if (method != Method::Reference && !baked) {
-    trees = bakeLightTrees(lights, options);
-    baked = &trees;
+  if (method == Method::Octree && !baked.octree) {
+    octree = packLinklessOctree(buildLightOctree(lights, scene, options.octree));
+    baked.octree = &octree;
+  } else if (method != Method::Reference && method != Method::Octree && !baked.trees) {
+    trees = bakeLightTrees(lights, options.trees);
+    baked.trees = &trees;
   }
   const double buildMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -41,9 +45,11 @@ PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
   lightCount = lights.size();
   // An AOV runs no lighting pass, so the reference method, which builds nothing, serves it.
   const Method method = request.aov == Aov::None ? request.method : Method::Reference;
-  renderer =
-      prepareRenderer(scene, lights, request.width, request.height, method, request.lightcuts.trees,
-                      defaultRig ? nullptr : request.prebuiltTrees, &bakeMs);
+  BakedLights baked;
+  if (!defaultRig) baked = {request.prebuiltTrees, request.prebuiltOctree};
+  renderer = prepareRenderer(scene, lights, request.width, request.height, method,
+                             {request.lightcuts.trees, request.octree}, baked, &bakeMs);
+  settings.octreeStats = request.octreeStats;
   settings.aov = request.aov;
   settings.ambient = defaultRig && request.rigAmbient ? glm::vec3(kRigAmbient) : request.ambient;
   settings.lightsPerPass = request.lightsPerPass;
@@ -58,6 +64,7 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   out.lightCount = p.lightCount;
   out.bakeMs = p.bakeMs;
   if (p.renderer->lightcuts()) out.nodeColour = p.renderer->lightcuts()->nodeColour();
+  if (p.renderer->octree()) out.octree = summarise(p.renderer->octree()->octree());
   out.image =
       p.renderer->render(makeView(p.camera, request.width, request.height), p.settings, &out.frame);
   return out;

@@ -20,8 +20,12 @@ struct RenderRequest {
   bool rigAmbient = false;
   int lightsPerPass = 0;  // 0: automatic
   LightcutsSettings lightcuts;
+  OctreeOptions octree;  // the octree method: how its octree is built (when it is built)
   // Lightcuts trees packed before for the scene's own lights (a baked scene); null: build.
   const PackedTrees* prebuiltTrees = nullptr;
+  // The same for the octree method's octree.
+  const LinklessOctree* prebuiltOctree = nullptr;
+  bool octreeStats = false;  // FrameSettings::octreeStats
   // Not None: the image is this material channel (render/aov.h), lit by nothing; no light
   // trees are built for it.
   Aov aov = Aov::None;
@@ -35,6 +39,7 @@ struct RenderOutcome {
   std::size_t lightCount = 0;
   double bakeMs = 0.0;         // light trees built and uploaded (lightcuts methods)
   NodeColourCoder nodeColour;  // lightcuts methods: how node colours were coded, and the error
+  OctreeSummary octree;        // the octree method: its octree's figures
 };
 
 // The camera a request resolves to. Throws Error ("SCENE: camera N does not exist ...") for a
@@ -44,13 +49,12 @@ Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* fra
 // What a request sets up before its first frame (a still or a playback): the camera, the
 // lights (the scene's, or the default rig fixed to that camera), a renderer for them, and
 // the frame settings. Needs a current context. Throws Error or gl::GlError.
-// A renderer for `lights`: a lightcuts method uploads `baked` (a baked file's trees) or, when
-// it is null, trees baked here with `options`. `bakeMs`: the milliseconds spent baking and
-// uploading them (0 for the reference).
+// A renderer for `lights`: a lightcuts method uploads `baked.trees`, the octree method
+// `baked.octree` (a baked file's), or, where it is null, what is baked here with `options`.
+// `bakeMs`: the milliseconds spent baking and uploading them (0 for the reference).
 std::unique_ptr<Renderer> prepareRenderer(const Scene& scene, const std::vector<Light>& lights,
                                           int width, int height, Method method,
-                                          const TreeOptions& options = {},
-                                          const PackedTrees* baked = nullptr,
+                                          const BakeOptions& options = {}, BakedLights baked = {},
                                           double* bakeMs = nullptr);
 
 struct PreparedRender {

@@ -17,7 +17,9 @@ Method parseMethod(const std::string& name) {
   if (name == "reference") return Method::Reference;
   if (name == "lightcuts") return Method::Lightcuts;
   if (name == "lightcuts-distance") return Method::LightcutsDistance;
-  throw Error("unknown method '" + name + "', expected reference, lightcuts or lightcuts-distance");
+  if (name == "octree") return Method::Octree;
+  throw Error("unknown method '" + name +
+              "', expected reference, lightcuts, lightcuts-distance or octree");
 }
 
 const char* methodName(Method m) {
@@ -26,20 +28,27 @@ const char* methodName(Method m) {
       return "lightcuts";
     case Method::LightcutsDistance:
       return "lightcuts-distance";
+    case Method::Octree:
+      return "octree";
     default:
       return "reference";
   }
 }
 
 Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-                   Method method, const PackedTrees* trees)
+                   Method method, BakedLights baked)
     : scene_(scene), gpu_(scene, lights), gbuffer_(width, height) {
   if (method != Method::Reference) {
-    if (!trees) throw Error(std::string(methodName(method)) + " needs the lights' baked trees");
     glFinish();
     const auto start = std::chrono::steady_clock::now();
-    const bool distance = method == Method::LightcutsDistance;
-    lightcuts_ = std::make_unique<LightcutsMethod>(*trees, lights, gbuffer_, distance);
+    if (method == Method::Octree) {
+      if (!baked.octree) throw Error("octree needs the lights' baked octree");
+      octree_ = std::make_unique<OctreeMethod>(*baked.octree, lights);
+    } else {
+      if (!baked.trees) throw Error(std::string(methodName(method)) + " needs the lights' baked trees");
+      distance_ = method == Method::LightcutsDistance;
+      lightcuts_ = std::make_unique<LightcutsMethod>(*baked.trees, lights, gbuffer_, distance_);
+    }
     glFinish();
     uploadMs_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -64,8 +73,21 @@ void warmUpGeometryPass(Aov aov) {
 }
 
 void Renderer::replaceLights(const std::vector<Light>& lights) {
-  assert(!lightcuts_ && "the light trees are built once, from the lights given at construction");
+  assert(!lightcuts_ && !octree_ && "trees and octrees are built from the lights given at construction");
   gpu_.replaceLights(lights);
+}
+
+void Renderer::moveLights(const std::vector<Light>& lights, const std::vector<int>& changed,
+                          const BakeOptions& options) {
+  gpu_.replaceLights(lights);
+  if (octree_) {
+    if (!dynamic_ || !dynamic_->update(lights, changed))
+      dynamic_ = std::make_unique<DynamicOctree>(lights, scene_, options.octree);
+    octree_->replace(dynamic_->packed(), lights);
+  } else if (lightcuts_) {
+    lightcuts_ = std::make_unique<LightcutsMethod>(bakeLightTrees(lights, options.trees), lights,
+                                                   gbuffer_, distance_);
+  }
 }
 
 const GeometryPass& Renderer::aovPass(Aov aov) {
@@ -114,6 +136,8 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
       if (lightcuts_) {
         lightcuts_->light(gpu_, gbuffer_, view, settings.lightcuts);
         ++passes;
+      } else if (octree_) {
+        passes += octree_->light(gpu_, gbuffer_, view, settings.lightsPerPass);
       } else {
         passes += lightReference(view, settings);
       }
@@ -121,6 +145,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
     light();
     // The opaque frame's cut statistics, before blended layers light the G-buffer again.
     if (stats && lightcuts_ && settings.readCutStats) stats->cuts = lightcuts_->cutStats();
+    if (stats && octree_ && settings.octreeStats) stats->octree = octree_->frameStats(gbuffer_);
     if (gpu_.hasBlended()) {
       if (!blend_) blend_ = std::make_unique<BlendPass>(gbuffer_.width(), gbuffer_.height());
       blend_->draw(scene_, gpu_, gbuffer_, view, settings.ambient, geometry_, [&] {

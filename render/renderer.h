@@ -13,21 +13,23 @@
 #include "render/geometry_pass.h"
 #include "render/gpu_scene.h"
 #include "render/lightcuts_method.h"
+#include "bake/octree_update.h"
+#include "render/octree_method.h"
 #include "render/reference_method.h"
 #include "scene/camera.h"
 
 namespace manylight {
 
-enum class Method { Reference, Lightcuts, LightcutsDistance };
+enum class Method { Reference, Lightcuts, LightcutsDistance, Octree };
 
-// "reference", "lightcuts", "lightcuts-distance" → Method; throws Error naming the choices
-// for anything else.
+// "reference", "lightcuts", "lightcuts-distance", "octree" → Method; throws Error naming the
+// choices for anything else.
 Method parseMethod(const std::string& name);
 const char* methodName(Method m);
 
 struct FrameSettings {
   glm::vec3 ambient{0.0f};
-  int lightsPerPass = 0;        // 0: ReferenceMethod::lightsPerPass(pixels)
+  int lightsPerPass = 0;  // 0: ReferenceMethod::lightsPerPass(pixels); octree: list entries
   LightcutsSettings lightcuts;  // the lightcuts methods
   bool readCutStats = true;     // lightcuts: read the per-pixel cut statistics back into FrameStats
   // Reference method: light only the bands of kRowBand rows whose index is a multiple of
@@ -36,6 +38,9 @@ struct FrameSettings {
   int rowBandStride = 1;
   // Not None: the image is this material channel (render/aov.h), with no lighting pass.
   Aov aov = Aov::None;
+  // The octree method: count each pixel's list entries and the lights reaching it into
+  // FrameStats (on the CPU, from the G-buffer read back).
+  bool octreeStats = false;
 };
 
 inline constexpr int kRowBand = 8;
@@ -48,6 +53,20 @@ struct FrameStats {
   int cutsMade = 0, cutsKept = 0;  // shared cuts found, and kept from earlier frames
   int lightingPasses = 0;          // 0 for an AOV
   CutStats cuts;                   // lightcuts methods only
+  OctreeFrameStats octree;         // the octree method with FrameSettings::octreeStats
+};
+
+// What the methods take baked for the lights (a baked file's, or built by prepareRenderer):
+// the light trees of the lightcuts methods, the linkless octree of the octree method.
+struct BakedLights {
+  const PackedTrees* trees = nullptr;
+  const LinklessOctree* octree = nullptr;
+};
+
+// How what a method needs is baked when it is not given baked.
+struct BakeOptions {
+  TreeOptions trees;
+  OctreeOptions octree;
 };
 
 // Renders one triangle with the default material at 8×8 and throws the image away:
@@ -62,18 +81,30 @@ void warmUpGeometryPass(Aov aov = Aov::None);
 class Renderer {
  public:
   // Uploads the scene and compiles the programs; needs a current context. A lightcuts
-  // method uploads `trees`, baked for these lights (bakeLightTrees or a baked file), and
-  // needs them: Error when they are missing. Throws gl::GlError.
+  // method uploads `baked.trees`, the octree method `baked.octree`, baked for these lights
+  // (bake/ or a baked file), and needs them: Error when they are missing. Throws gl::GlError.
   Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
-           Method method, const PackedTrees* trees = nullptr);
-  // Milliseconds spent uploading the light trees (lightcuts methods; else 0).
+           Method method, BakedLights baked = {});
+  // Milliseconds spent uploading the light trees or the octree (else 0).
   double uploadMs() const { return uploadMs_; }
-  // The lightcuts method, or null for the reference method.
+  // The lightcuts method, or null for the others.
   const LightcutsMethod* lightcuts() const { return lightcuts_.get(); }
+  // The octree method, or null for the others.
+  const OctreeMethod* octree() const { return octree_.get(); }
+  // The G-buffer of the last frame.
+  const GBuffer& gbuffer() const { return gbuffer_; }
 
   // Reference method only: lights the next frames with `lights` instead (probes that change
   // one light's colour, without uploading the geometry again). Throws gl::GlError.
   void replaceLights(const std::vector<Light>& lights);
+
+  // Lights the next frames with `lights`, the construction's lights of which those listed in
+  // `changed` (scene indices) moved or changed (an animation). The octree method updates its
+  // octree in place (bake/octree_update.h; built with `options` at the first call); the
+  // lightcuts methods bake their trees again with `options` and drop their kept cuts.
+  // Throws gl::GlError.
+  void moveLights(const std::vector<Light>& lights, const std::vector<int>& changed,
+                  const BakeOptions& options);
 
   // Renders one frame seen through `view`. Throws gl::GlError on a driver error.
   Image render(const View& view, const FrameSettings& settings, FrameStats* stats = nullptr);
@@ -91,6 +122,9 @@ class Renderer {
   std::unique_ptr<GeometryPass> aovGeometry_;
   ReferenceMethod reference_;
   std::unique_ptr<LightcutsMethod> lightcuts_;
+  std::unique_ptr<OctreeMethod> octree_;
+  std::unique_ptr<DynamicOctree> dynamic_;  // the octree method's, once lights move
+  bool distance_ = false;                   // lightcuts-distance
   double uploadMs_ = 0.0;
   gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
 };

@@ -214,7 +214,7 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
       // The variants after it differ only in uniforms.
       const bool warmUp = !renderer;
       if (!renderer) {
-        renderer = prepareRenderer(scene_, lights, w, h, v.method, {}, nullptr, &bakeMs[v.method]);
+        renderer = prepareRenderer(scene_, lights, w, h, v.method, {}, {}, &bakeMs[v.method]);
       }
       r.bakeMs = bakeMs[v.method];
       FrameSettings fs = variantSettings(v, c, settings_.maxCut);

@@ -1,0 +1,134 @@
+#include "render/octree_method.h"
+
+#include <algorithm>
+
+#include "bake/light_pack.h"
+#include "gl/context.h"
+#include "glsl/variants.h"
+#include "render/lighting_inputs.h"
+
+namespace manylight {
+
+using namespace gl::api;
+
+namespace {
+
+template <typename T>
+gl::TextureBuffer upload(std::vector<T> data, std::size_t perTexel, GLenum format,
+                         const std::string& what) {
+  if (data.empty()) data.assign(perTexel, T(0));  // keep the sampler complete
+  return gl::uploadTextureBuffer(data.data(), data.size() / perTexel, format, what);
+}
+
+}  // namespace
+
+OctreeMethod::OctreeMethod(LinklessOctree octree, const std::vector<Light>& lights)
+    : octree_(std::move(octree)) {
+  const LightOrder order = lightOrder(lights);
+  for (int index : order.scene) lights_.push_back(lights[std::size_t(index)]);
+  nodes_ = upload(octree_.nodes, 2, GL_RG32UI, "light octree nodes");
+  offsets_ = upload(octree_.offsets, 4, GL_RGBA16UI, "light octree hash offsets");
+  indices_ = upload(octree_.indices, 1, GL_R32UI, "light octree lists");
+}
+
+void OctreeMethod::replace(const LinklessOctree& octree, const std::vector<Light>& lights) {
+  octree_ = octree;
+  lights_.clear();
+  for (int index : lightOrder(lights).scene) lights_.push_back(lights[std::size_t(index)]);
+  nodes_ = upload(octree_.nodes, 2, GL_RG32UI, "light octree nodes");
+  indices_ = upload(octree_.indices, 1, GL_R32UI, "light octree lists");
+}
+
+int OctreeMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
+                        int perPass) const {
+  if (perPass <= 0 || perPass > layout::kOctreeEntriesPerPass) perPass = layout::kOctreeEntriesPerPass;
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.lightingFramebuffer().id());
+  const gl::Program& shader =
+      gl::cachedProgram("fullscreen.vert", "lighting_octree.frag",
+                        glsl::octreeDefines(scene.hasSpecular() ? glsl::kOctreeHasSpecular : 0u),
+                        {"oRadiance"});
+  shader.use();
+  bindLightingInputs(shader, gbuffer, scene, view);
+  const gl::TextureBuffer* buffers[3] = {&nodes_, &offsets_, &indices_};
+  const char* names[3] = {"uOctreeNodes", "uOctreeOffsets", "uOctreeIndices"};
+  for (int i = 0; i < 3; ++i) {
+    glActiveTexture(GL_TEXTURE5 + i);
+    glBindTexture(GL_TEXTURE_BUFFER, buffers[i]->texture.id());
+    glUniform1i(shader.uniform(names[i]), 5 + i);
+  }
+  const LinklessOctree& o = octree_;
+  glUniform3fv(shader.uniform("uOctreeOrigin"), 1, &o.origin.x);
+  glUniform1f(shader.uniform("uOctreeInvLeaf"), 1.0f / o.leafEdge);
+  glUniform1i(shader.uniform("uOctreeLevels"), o.levels);
+  std::vector<GLint> dims, nodeBase, offsetBase, offsetCount;
+  for (const LinklessLevel& l : o.level) {
+    dims.insert(dims.end(), {l.dims.x, l.dims.y, l.dims.z});
+    nodeBase.push_back(l.nodeBase);
+    offsetBase.push_back(l.offsetBase);
+    offsetCount.push_back(l.offsetCount);
+  }
+  glUniform3iv(shader.uniform("uLevelDims"), o.levels, dims.data());
+  glUniform1iv(shader.uniform("uLevelNodeBase"), o.levels, nodeBase.data());
+  glUniform1iv(shader.uniform("uLevelOffsetBase"), o.levels, offsetBase.data());
+  glUniform1iv(shader.uniform("uLevelOffsetCount"), o.levels, offsetCount.data());
+  glUniform1i(shader.uniform("uGlobalCount"), int(o.globalCount));
+
+  // Passes of kOctreeEntriesPerPass entries until the longest list ends.
+  const long long longest = (long long)o.globalCount + o.maxLeafCount;
+  int passes = 0;
+  glUniform1i(shader.uniform("uEntriesPerPass"), perPass);
+  for (long long first = 0; first < std::max(longest, 1ll); first += perPass) {
+    glUniform1i(shader.uniform("uFirstEntry"), int(first));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++passes;
+  }
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+  return passes;
+}
+
+OctreeFrameStats OctreeMethod::frameStats(const GBuffer& gbuffer, bool bruteForce) const {
+  const int w = gbuffer.width(), h = gbuffer.height();
+  std::vector<float> position(std::size_t(w) * h * 4), normal(position.size());
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.geometryFramebuffer().id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadBuffer(GL_COLOR_ATTACHMENT0 + GBuffer::kPosition);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, position.data());
+  glReadBuffer(GL_COLOR_ATTACHMENT0 + GBuffer::kNormal);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, normal.data());
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  OctreeFrameStats stats;
+  long long entries = 0, evaluated = 0, reaching = 0;
+  std::vector<char> listed(bruteForce ? lights_.size() : 0);
+  for (std::size_t i = 0; i < std::size_t(w) * h; ++i) {
+    if (normal[4 * i + 3] == 0.0f) continue;  // background
+    const glm::vec3 p(position[4 * i], position[4 * i + 1], position[4 * i + 2]);
+    const OctreeList list = linklessListAt(octree_, p);
+    ++stats.pixels;
+    entries += octree_.globalCount + list.count;
+    for (std::uint32_t k = 0; k < octree_.globalCount + list.count; ++k) {
+      const std::uint32_t at = k < octree_.globalCount ? k : list.first + (k - octree_.globalCount);
+      const Light& light = lights_[octree_.indices[at]];
+      const glm::vec3 d = light.position - p;
+      const bool ranged = light.type != LightType::Directional && light.range > 0.0f;
+      // The shader's range test, and the window's support: the same lights.
+      const bool inRange = !ranged || glm::dot(d, d) < light.range * light.range;
+      evaluated += inRange;
+      reaching += inRange;
+      if (bruteForce) listed[octree_.indices[at]] = 1;
+    }
+    for (std::size_t slot = 0; slot < listed.size(); ++slot) {
+      if (!listed[slot] && lightReaches(lights_[slot], p)) ++stats.missed;
+      listed[slot] = 0;
+    }
+  }
+  if (stats.pixels > 0) {
+    stats.listEntries = double(entries) / double(stats.pixels);
+    stats.lightEvaluations = double(evaluated) / double(stats.pixels);
+    stats.lightsReaching = double(reaching) / double(stats.pixels);
+  }
+  return stats;
+}
+
+}  // namespace manylight

@@ -1,0 +1,165 @@
+// The octree method against the reference: equal within float summation on ranged and mixed
+// scenes, no light that reaches a pixel missing from its lists (a CPU brute-force count at
+// every pixel), and no cap on a list's length.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <random>
+
+#include "generators/light_layouts.h"
+#include "render/render_job.h"
+#include "scene/gltf_loader.h"
+#include "tests/gl_support.h"
+#include "tests/test_support.h"
+
+namespace manylight::testing {
+namespace {
+
+constexpr int kWidth = 96, kHeight = 72;
+// Both methods sum the same terms in float, in different orders (measured: below 2e-6).
+constexpr double kRelative = 1e-5;
+
+const Scene& room() {
+  static const Scene* r = nullptr;
+  if (!r) {
+    context();
+    RoomOptions o;
+    o.lightCount = 1;
+    o.textured = false;
+    r = new Scene(loadGltf(roomScene(o, "octree-room.gltf")));
+  }
+  return *r;
+}
+
+struct Comparison {
+  int pixels = 0, failing = 0;
+  double worst = 0.0;
+};
+
+Comparison compare(const Image& image, const Image& reference) {
+  Comparison c;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const float* r = reference.pixel(x, y);
+      const float* o = image.pixel(x, y);
+      if (r[3] == 0.0f) continue;
+      ++c.pixels;
+      const double peak = std::max({double(r[0]), double(r[1]), double(r[2])});
+      double diff = 0.0;
+      for (int ch = 0; ch < 3; ++ch) diff = std::max(diff, std::abs(double(o[ch]) - double(r[ch])));
+      const double rel = diff / std::max(peak, 1e-30);
+      c.worst = std::max(c.worst, rel);
+      if (diff > kRelative * peak + 1e-9) ++c.failing;
+    }
+  }
+  return c;
+}
+
+struct OctreeRun {
+  Comparison comparison;
+  OctreeFrameStats stats;
+  OctreeSummary octree;
+  int passes = 0;
+};
+
+// `lights` in the room through the octree method and the reference, and the octree's lists
+// at every pixel against every light.
+OctreeRun run(const std::vector<Light>& lights, int entriesPerPass = 0) {
+  Scene scene = room();
+  scene.lights = lights;
+  RenderRequest request;
+  request.width = kWidth;
+  request.height = kHeight;
+  const Image reference = renderScene(scene, request).image;
+  request.method = Method::Octree;
+  request.lightsPerPass = entriesPerPass;
+  PreparedRender p(scene, request);
+  FrameStats frame;
+  const Image image = p.renderer->render(makeView(p.camera, kWidth, kHeight), p.settings, &frame);
+  OctreeRun r;
+  r.comparison = compare(image, reference);
+  r.stats = p.renderer->octree()->frameStats(p.renderer->gbuffer(), true);
+  r.octree = summarise(p.renderer->octree()->octree());
+  r.passes = frame.lightingPasses;
+  std::cout << lights.size() << " lights: " << r.comparison.pixels << " pixels, worst "
+            << r.comparison.worst << ", entries " << r.stats.listEntries << ", evaluated "
+            << r.stats.lightEvaluations << ", reaching " << r.stats.lightsReaching << ", levels "
+            << r.octree.levels << ", nodes " << r.octree.nodes << ", passes " << r.passes << "\n";
+  return r;
+}
+
+void expectExact(const OctreeRun& r) {
+  EXPECT_GT(r.comparison.pixels, kWidth * kHeight / 2);
+  EXPECT_EQ(r.comparison.failing, 0) << "worst relative difference " << r.comparison.worst;
+  EXPECT_EQ(r.stats.missed, 0);
+}
+
+// Tight: the lists hold at most twice the lights whose window is non-zero (the leaf edge's
+// rule), and what the shader evaluates in full at most 1.5 times them.
+void expectTight(const OctreeRun& r) {
+  EXPECT_GT(r.stats.lightsReaching, 10.0);
+  EXPECT_LE(r.stats.listEntries, 2.0 * r.stats.lightsReaching);
+  EXPECT_LE(r.stats.lightEvaluations, 1.5 * r.stats.lightsReaching);
+}
+
+TEST(Octree, UniformRangedEqualsTheReference) {
+  const OctreeRun r = run(layoutLights(LightLayout::UniformRanged, 4096, 7));
+  expectExact(r);
+  expectTight(r);
+  EXPECT_EQ(r.octree.globalCount, 0u);
+}
+
+TEST(Octree, StreetRangedEqualsTheReference) {
+  const OctreeRun r = run(layoutLights(LightLayout::StreetRanged, 4096, 7));
+  expectExact(r);
+  expectTight(r);
+}
+
+TEST(Octree, MixedWithUnrangedLightsEqualsTheReference) {
+  // A third directional, half of the rest without a range: the global list.
+  const OctreeRun r = run(layoutLights(LightLayout::Mixed, 3000, 7));
+  expectExact(r);
+  EXPECT_GT(r.octree.globalCount, 1000u);
+}
+
+TEST(Octree, NoLightsAndOneLight) {
+  expectExact(run({}));
+  Light one;
+  one.position = {0.0f, 1.0f, 0.0f};
+  one.range = 2.0f;
+  one.intensity = 5.0f;
+  expectExact(run({one}));
+}
+
+// `count` point lights within a centimetre of one point, each reaching 3 m: a leaf near it
+// lists them all.
+std::vector<Light> overlapping(int count) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-0.005f, 0.005f);
+  std::vector<Light> lights(static_cast<std::size_t>(count));
+  for (Light& l : lights) {
+    l.position = glm::vec3(0.5f, 1.0f, 0.5f) + glm::vec3(u(rng), u(rng), u(rng));
+    l.range = 3.0f;
+    l.intensity = 20.0f / float(count);
+  }
+  return lights;
+}
+
+TEST(Octree, TwentyThousandOverlappingLightsAreNotCapped) {
+  const OctreeRun r = run(overlapping(20000));
+  expectExact(r);
+  EXPECT_EQ(r.octree.maxLeafCount, 20000u);
+  EXPECT_GT(r.stats.lightsReaching, 4000.0);
+}
+
+TEST(Octree, ListsLongerThanAPassContinueInFurtherPasses) {
+  // Passes of 3,000 entries: the 20,000 lights' lists take seven.
+  const OctreeRun r = run(overlapping(20000), 3000);
+  expectExact(r);
+  EXPECT_EQ(r.passes, 7);
+}
+
+}  // namespace
+}  // namespace manylight::testing
