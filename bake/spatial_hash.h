@@ -9,9 +9,10 @@
 //   h1(k) = (mix(r.x + a (r.y + b r.z)) mod R + (q.x + 61 q.y + 3721 q.z) mod R) mod R,
 // mix being the "lowbias32" integer finaliser. Two keys with the same residue reach the same
 // slot whatever the offset, so they must not share an entry; for those the mix terms are
-// equal and the entries differ by their quotients' linear index mod R, which is never 0 when
-// the quotients differ by at most 30 per axis and R > 113490 (and by at most 1 per axis when
-// R > 3783): clustered keys, whose extent is a few table widths, never share such an entry.
+// equal and the entries differ by their quotients' linear index mod R. That index does not
+// wrap in uint32 when every dims component is >= 2 (every near-cubic table), and then is never
+// 0 mod R when the quotients differ by at most 30 per axis and R > 113490, or by at most 1 per
+// axis and R > 3783: clustered keys, a few table widths across, never share such an entry.
 // For keys spread further the construction checks and retries with another R.
 #include <cstddef>
 #include <cstdint>
