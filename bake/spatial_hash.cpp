@@ -17,8 +17,10 @@ constexpr std::uint32_t kNone = 0xffffffffu;
 // Offset entries per key of the first construction, and the growth after a group could not
 // be placed; a residue clash (two keys that always collide sharing an entry) grows R by 1/16.
 constexpr double kInitialEntriesPerKey = 0.25, kGrowthAfterStuck = 1.3;
-// Failed constructions per table size before the next larger table (within 1.1 n).
-constexpr int kAttemptsPerTable = 4;
+// Failed constructions per table size before the next larger table (within 1.1 n); failed
+// constructions before every further one takes a new salt; R's limit in entries per key.
+constexpr int kAttemptsPerTable = 4, kAttemptsBeforeSalts = 12;
+constexpr double kMostEntriesPerKey = 4.0;
 
 // "lowbias32" (Chris Wellons' hash prospector): a full-avalanche 32-bit integer finaliser.
 std::uint32_t mix32(std::uint32_t x) {
@@ -49,9 +51,15 @@ struct EntryTerms {
   std::uint32_t mixed = 0, quotient = 0;
 };
 
-EntryTerms entryTerms(glm::uvec3 key, glm::uvec3 d) {
-  const glm::uvec3 q = key / d;
-  return {mix32(linearIndex(key % d, d)), q.x + kQuotientStrideY * q.y + kQuotientStrideZ * q.z};
+// The quotient term: linear for salt 0, else a salted hash (never equal for two quotients
+// that differ in one component only).
+std::uint32_t quotientTerm(glm::uvec3 q, std::uint32_t salt) {
+  if (salt == 0) return q.x + kQuotientStrideY * q.y + kQuotientStrideZ * q.z;
+  return mix32(q.x + mix32(q.y + mix32(q.z + salt)));
+}
+
+EntryTerms entryTerms(glm::uvec3 key, glm::uvec3 d, std::uint32_t salt) {
+  return {mix32(linearIndex(key % d, d)), quotientTerm(key / d, salt)};
 }
 
 std::uint32_t entryOf(EntryTerms t, std::uint32_t r) { return (t.mixed % r + t.quotient % r) % r; }
@@ -106,13 +114,17 @@ std::string keyText(glm::uvec3 k) {
   return "(" + std::to_string(k.x) + ", " + std::to_string(k.y) + ", " + std::to_string(k.z) + ")";
 }
 
-// Whether two keys of one group have the same residue (they would collide for every offset).
-// Equal keys always do, so every clash is checked for them. Throws BakeError on equal keys.
-bool residueClash(const Groups& g, const std::vector<std::uint32_t>& residue,
-                  const std::vector<std::uint32_t>& entry, const std::vector<glm::uvec3>& keys,
-                  std::size_t slots) {
+// Two keys of one group with the same residue collide for every offset: a clash. It is exact
+// when their quotient terms are equal too, so that no R can separate them.
+enum class Clash { kNone, kModR, kExact };
+
+// Whether two keys of one group have the same residue. Equal keys always do, so every clash
+// is checked for them. Throws BakeError on equal keys.
+Clash residueClash(const Groups& g, const std::vector<std::uint32_t>& residue,
+                   const std::vector<std::uint32_t>& entry, const std::vector<EntryTerms>& terms,
+                   const std::vector<glm::uvec3>& keys, std::size_t slots) {
   std::vector<std::uint32_t> seenBy(slots, kNone);  // a key with that residue
-  bool clash = false;
+  Clash clash = Clash::kNone;
   for (std::uint32_t i : g.members) {
     std::uint32_t& seen = seenBy[residue[i]];
     if (seen != kNone && entry[seen] == entry[i]) {
@@ -120,7 +132,8 @@ bool residueClash(const Groups& g, const std::vector<std::uint32_t>& residue,
         throw BakeError("spatial hash: keys " + std::to_string(seen) + " and " + std::to_string(i) +
                         " are both " + keyText(keys[i]) + "; expected distinct keys");
       }
-      clash = true;
+      if (clash == Clash::kNone) clash = Clash::kModR;
+      if (terms[seen].quotient == terms[i].quotient) clash = Clash::kExact;
     }
     seen = i;
   }
@@ -217,7 +230,7 @@ bool placeGroup(Placement& p, const glm::u16vec3* residues, std::uint32_t size,
   return false;
 }
 
-enum class Outcome { kBuilt, kClash, kStuck };
+enum class Outcome { kBuilt, kClash, kExactClash, kStuck };
 
 // One construction for h.dims and h.offsetCount; fills h.offsets and h.slots on success.
 Outcome construct(const std::vector<glm::uvec3>& keys, SpatialHash& h) {
@@ -227,12 +240,13 @@ Outcome construct(const std::vector<glm::uvec3>& keys, SpatialHash& h) {
   std::vector<std::uint32_t> residue(keys.size()), entry(keys.size());
   std::vector<glm::u16vec3> residue3(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) {
-    terms[i] = entryTerms(keys[i], d);
+    terms[i] = entryTerms(keys[i], d, h.salt);
     residue3[i] = glm::u16vec3(keys[i] % d);
     residue[i] = linearIndex(keys[i] % d, d);
   }
   const Groups groups = groupKeys(terms, r, entry);
-  if (residueClash(groups, residue, entry, keys, h.slotCount())) return Outcome::kClash;
+  const Clash clash = residueClash(groups, residue, entry, terms, keys, h.slotCount());
+  if (clash != Clash::kNone) return clash == Clash::kExact ? Outcome::kExactClash : Outcome::kClash;
   std::vector<glm::u16vec3> grouped(keys.size());  // residues in group order
   for (std::size_t i = 0; i < keys.size(); ++i) grouped[i] = residue3[groups.members[i]];
   Placement p{d, std::vector<std::uint8_t>(h.slotCount(), 0), h.slotCount(), 0, Random{}, {}};
@@ -278,7 +292,7 @@ void checkKeyRange(const std::vector<glm::uvec3>& keys) {
 std::size_t SpatialHash::slotCount() const { return std::size_t(volume(dims)); }
 
 std::uint32_t spatialHashEntry(const SpatialHash& h, glm::uvec3 key) {
-  return entryOf(entryTerms(key, glm::uvec3(h.dims)), std::uint32_t(h.offsetCount));
+  return entryOf(entryTerms(key, glm::uvec3(h.dims), h.salt), std::uint32_t(h.offsetCount));
 }
 
 std::uint32_t hashSlot(const SpatialHash& h, glm::uvec3 key) {
@@ -286,8 +300,10 @@ std::uint32_t hashSlot(const SpatialHash& h, glm::uvec3 key) {
   return linearIndex((key + glm::uvec3(h.offsets[spatialHashEntry(h, key)])) % d, d);
 }
 
-// Past kAttemptsPerTable failures on a table the next larger one is used while there is one;
-// R only grows, so groups shrink and the chance of success rises with every attempt.
+// Past kAttemptsPerTable failures on a table the next larger one is used while there is one.
+// R grows (up to 4 n + 16), so groups shrink and the chance of success rises. An exact clash
+// (no R separates two keys) and every attempt past kAttemptsBeforeSalts take a new salt,
+// which makes each attempt an independent trial: the loop ends with probability 1.
 SpatialHash buildSpatialHash(const std::vector<glm::uvec3>& keys) {
   SpatialHash h;
   h.offsets.assign(1, glm::u16vec3(0));
@@ -296,6 +312,7 @@ SpatialHash buildSpatialHash(const std::vector<glm::uvec3>& keys) {
   const std::vector<glm::ivec3> tables = tableCandidates(keys.size());
   std::size_t table = 0;
   double entries = std::max(1.0, kInitialEntriesPerKey * double(keys.size()));
+  const double limit = kMostEntriesPerKey * double(keys.size()) + 16.0;
   for (int attempt = 1;; ++attempt) {
     h.dims = tables[table];
     h.offsetCount = int(entries);
@@ -306,13 +323,17 @@ SpatialHash buildSpatialHash(const std::vector<glm::uvec3>& keys) {
     }
     const double grown =
         outcome == Outcome::kClash ? entries * (1.0 + 1.0 / 16.0) : entries * kGrowthAfterStuck;
-    entries = std::max(grown, entries + 1.0);
+    entries = std::min(std::max(grown, entries + 1.0), limit);
+    if (outcome == Outcome::kExactClash || attempt >= kAttemptsBeforeSalts) {
+      h.salt = std::uint16_t(h.salt == 0xffff ? 1 : h.salt + 1);
+    }
     if (attempt % kAttemptsPerTable == 0) table = largerTable(tables, table);
   }
 }
 
 std::vector<std::uint16_t> spatialHashTexels(const SpatialHash& h) {
   std::vector<std::uint16_t> texels(4 * h.offsets.size(), 0);
+  texels[3] = h.salt;
   for (std::size_t e = 0; e < h.offsets.size(); ++e) {
     for (int c = 0; c < 3; ++c) texels[4 * e + c] = h.offsets[e][c];
   }

@@ -13,7 +13,10 @@
 // wrap in uint32 when every dims component is >= 2 (every near-cubic table), and then is never
 // 0 mod R when the quotients differ by at most 30 per axis and R > 113490, or by at most 1 per
 // axis and R > 3783: clustered keys, a few table widths across, never share such an entry.
-// For keys spread further the construction checks and retries with another R.
+// For keys spread further the construction checks and retries with another R. Where no R
+// can separate two keys (equal quotient terms) the quotient term becomes a salted hash,
+// mix(q.x + mix(q.y + mix(q.z + salt))), with the salt (1..65535) in the w of the offset
+// table's first texel; salt 0 is the linear term.
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -28,6 +31,7 @@ struct SpatialHash {
   std::vector<glm::u16vec3> offsets;  // R entries, each component < the matching dims component
   std::vector<std::uint32_t> slots;   // per key (input order), its slot index
   int attempts = 1;                   // constructions tried until one succeeded (for --stats)
+  std::uint16_t salt = 0;             // 0: linear quotient term of h1, else its salt (above)
   std::size_t slotCount() const;      // a*b*c
 };
 
@@ -47,8 +51,8 @@ std::uint32_t spatialHashEntry(const SpatialHash& h, glm::uvec3 key);
 // The slot of `key` (exactly what the GLSL function computes).
 std::uint32_t hashSlot(const SpatialHash& h, glm::uvec3 key);
 
-// The offset table as RGBA16UI texels (x, y, z, 0), 4 values per entry, for the
-// usamplerBuffer glsl/spatial_hash.glsl reads.
+// The offset table as RGBA16UI texels (x, y, z, w), 4 values per entry, for the
+// usamplerBuffer glsl/spatial_hash.glsl reads: w is the salt in the first texel, else 0.
 std::vector<std::uint16_t> spatialHashTexels(const SpatialHash& h);
 
 }  // namespace manylight

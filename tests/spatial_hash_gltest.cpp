@@ -139,8 +139,18 @@ std::vector<std::uint32_t> shaderSlots(const SpatialHash& h, const std::vector<g
   return slots;
 }
 
-TEST(SpatialHashShader, SlotsMatchTheCpuHash) {
+void expectShaderMatches(const std::vector<glm::uvec3>& keys, bool salted) {
   context();
+  const SpatialHash h = buildSpatialHash(keys);
+  ASSERT_EQ(h.salt != 0, salted) << "salt " << h.salt;
+  const std::vector<std::uint32_t> slots = shaderSlots(h, keys);
+  ASSERT_EQ(slots.size(), keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    ASSERT_EQ(slots[i], hashSlot(h, keys[i])) << "key " << i;
+  }
+}
+
+TEST(SpatialHashShader, SlotsMatchTheCpuHash) {
   std::vector<glm::uvec3> keys;
   for (std::uint32_t i = 0; i < 3000; ++i) {  // four slabs 30x25 cells, then a corner of the domain
     keys.push_back({100 + i % 30, 200 + (i / 30) % 25, 50 * (i / 750) + (i / 30) / 25 % 4});
@@ -148,12 +158,19 @@ TEST(SpatialHashShader, SlotsMatchTheCpuHash) {
   const std::uint32_t top = kSpatialHashKeyLimit - 1;
   for (std::uint32_t i = 0; i < 64; ++i)
     keys.push_back({top - i % 4, top - i / 4 % 4, top - i / 16});
-  const SpatialHash h = buildSpatialHash(keys);
-  const std::vector<std::uint32_t> slots = shaderSlots(h, keys);
-  ASSERT_EQ(slots.size(), keys.size());
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    ASSERT_EQ(slots[i], hashSlot(h, keys[i])) << "key " << i;
+  expectShaderMatches(keys, false);
+}
+
+// Pairs of keys in a 10x10x10 table with the same residue and linear quotient term
+// (quotients (0, 1, 0) and (61, 0, 0)) need the salted term.
+TEST(SpatialHashShader, SaltedSlotsMatchTheCpuHash) {
+  std::vector<glm::uvec3> keys;
+  for (std::uint32_t i = 0; i < 500; ++i) {
+    const glm::uvec3 k(i % 10, 10 + i / 10 % 10, i / 100);
+    keys.push_back(k);
+    keys.push_back({k.x + 610, k.y - 10, k.z});
   }
+  expectShaderMatches(keys, true);
 }
 
 }  // namespace

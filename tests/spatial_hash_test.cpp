@@ -152,25 +152,55 @@ TEST(SpatialHash, BuildsAreDeterministic) {
   EXPECT_EQ(a.dims, b.dims);
   EXPECT_EQ(a.offsetCount, b.offsetCount);
   EXPECT_EQ(a.attempts, b.attempts);
+  EXPECT_EQ(a.salt, b.salt);
   EXPECT_TRUE(a.offsets == b.offsets);
   EXPECT_TRUE(a.slots == b.slots);
 }
 
 // The hash functions spelled out as bake/spatial_hash.h documents them (and the GLSL has them).
-std::uint32_t documentedSlot(const SpatialHash& h, glm::uvec3 k) {
-  const glm::uvec3 d(h.dims), r = k % d, q = k / d;
-  std::uint32_t x = r.x + d.x * (r.y + d.y * r.z);
+std::uint32_t mix(std::uint32_t x) {
   x = (x ^ (x >> 16)) * 0x7feb352du;
   x = (x ^ (x >> 15)) * 0x846ca68bu;
-  x ^= x >> 16;
+  return x ^ (x >> 16);
+}
+
+std::uint32_t documentedSlot(const SpatialHash& h, glm::uvec3 k) {
+  const glm::uvec3 d(h.dims), r = k % d, q = k / d;
+  const std::uint32_t x = mix(r.x + d.x * (r.y + d.y * r.z));
+  const std::uint32_t quotient =
+      h.salt == 0 ? q.x + 61 * q.y + 3721 * q.z : mix(q.x + mix(q.y + mix(q.z + h.salt)));
   const auto count = std::uint32_t(h.offsetCount);
-  const std::uint32_t entry = (x % count + (q.x + 61 * q.y + 3721 * q.z) % count) % count;
+  const std::uint32_t entry = (x % count + quotient % count) % count;
   const glm::uvec3 s = (k + glm::uvec3(h.offsets[entry])) % d;
   return s.x + d.x * (s.y + d.y * s.z);
 }
 
+// Pairs of keys with the same residue and the same linear quotient term (quotients differing
+// by (61, -1, 0)): a 10x10x10 table of 1000 keys cannot separate them for any R.
+std::vector<glm::uvec3> twinKeys() {
+  std::vector<glm::uvec3> keys;
+  for (std::uint32_t i = 0; i < 500; ++i) {
+    const glm::uvec3 k(i % 10, 10 + i / 10 % 10, i / 100);
+    keys.push_back(k);
+    keys.push_back(k + glm::uvec3(610, 0, 0) - glm::uvec3(0, 10, 0));
+  }
+  return keys;
+}
+
+TEST(SpatialHash, KeysTheLinearTermCannotSeparateGetASalt) {
+  const SpatialHash h = buildSpatialHash(twinKeys());
+  EXPECT_EQ(h.dims, glm::ivec3(10, 10, 10));
+  EXPECT_NE(h.salt, 0);
+  expectPerfect(twinKeys(), "twins");
+  // A table of 2 slots (1, 1, 2): both keys have residue 0 and quotient term 61.
+  const SpatialHash pair = buildSpatialHash({{61, 0, 0}, {0, 1, 0}});
+  EXPECT_EQ(pair.dims, glm::ivec3(1, 1, 2));
+  EXPECT_NE(pair.salt, 0);
+  expectPerfect({{61, 0, 0}, {0, 1, 0}}, "pair");
+}
+
 TEST(SpatialHash, SlotsFollowTheDocumentedFunctions) {
-  for (const auto& keys : {scatteredKeys(1000), slabKeys(5000)}) {
+  for (const auto& keys : {scatteredKeys(1000), slabKeys(5000), twinKeys()}) {
     const SpatialHash h = buildSpatialHash(keys);
     for (std::size_t i = 0; i < keys.size(); ++i) {
       ASSERT_EQ(documentedSlot(h, keys[i]), h.slots[i]) << "key " << i;
@@ -178,13 +208,15 @@ TEST(SpatialHash, SlotsFollowTheDocumentedFunctions) {
   }
 }
 
-TEST(SpatialHash, TexelsHoldTheOffsetsThenZero) {
-  const SpatialHash h = buildSpatialHash(clusteredKeys(500));
-  const std::vector<std::uint16_t> texels = spatialHashTexels(h);
-  ASSERT_EQ(texels.size(), 4 * h.offsets.size());
-  for (std::size_t e = 0; e < h.offsets.size(); ++e) {
-    EXPECT_EQ(glm::u16vec3(texels[4 * e], texels[4 * e + 1], texels[4 * e + 2]), h.offsets[e]);
-    EXPECT_EQ(texels[4 * e + 3], 0);
+TEST(SpatialHash, TexelsHoldTheOffsetsAndTheSalt) {
+  for (const auto& keys : {clusteredKeys(500), twinKeys()}) {
+    const SpatialHash h = buildSpatialHash(keys);
+    const std::vector<std::uint16_t> texels = spatialHashTexels(h);
+    ASSERT_EQ(texels.size(), 4 * h.offsets.size());
+    for (std::size_t e = 0; e < h.offsets.size(); ++e) {
+      EXPECT_EQ(glm::u16vec3(texels[4 * e], texels[4 * e + 1], texels[4 * e + 2]), h.offsets[e]);
+      EXPECT_EQ(texels[4 * e + 3], e == 0 ? h.salt : 0);
+    }
   }
 }
 
