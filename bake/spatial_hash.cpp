@@ -3,7 +3,6 @@
 #include "bake/spatial_hash.h"
 
 #include <algorithm>
-#include <cassert>
 #include <string>
 
 #include "bake/colour_fit.h"  // BakeError
@@ -64,6 +63,8 @@ EntryTerms entryTerms(glm::uvec3 key, glm::uvec3 d, std::uint32_t salt) {
 
 std::uint32_t entryOf(EntryTerms t, std::uint32_t r) { return (t.mixed % r + t.quotient % r) % r; }
 
+std::uint64_t volume(glm::ivec3 d) { return std::uint64_t(d.x) * std::uint64_t(d.y) * d.z; }
+
 // Table extents a <= b <= c with a*b*c in [n, n + n/10] and c <= 65536 (offsets are 16-bit);
 // near-cubic ones (c <= 2a) by increasing product, or where there are none (small n) all, by
 // increasing c/a. For each (a, b) only the smallest c, so there are O(n^(2/3)) of them.
@@ -78,7 +79,6 @@ std::vector<glm::ivec3> tableCandidates(std::uint64_t n) {
       (c <= 2 * a ? cubic : all).push_back(d);
     }
   }
-  auto volume = [](glm::ivec3 d) { return std::uint64_t(d.x) * std::uint64_t(d.y) * d.z; };
   if (!cubic.empty()) {
     std::sort(cubic.begin(), cubic.end(),
               [&](glm::ivec3 p, glm::ivec3 q) { return volume(p) < volume(q); });
@@ -266,8 +266,6 @@ Outcome construct(const std::vector<glm::uvec3>& keys, SpatialHash& h) {
   return Outcome::kBuilt;
 }
 
-std::uint64_t volume(glm::ivec3 d) { return std::uint64_t(d.x) * std::uint64_t(d.y) * d.z; }
-
 // The next table of `candidates` after `at` at least 2% larger, or `at` if there is none.
 std::size_t largerTable(const std::vector<glm::ivec3>& candidates, std::size_t at) {
   const std::uint64_t wanted = volume(candidates[at]) + (volume(candidates[at]) + 49) / 50;
@@ -333,7 +331,7 @@ SpatialHash buildSpatialHash(const std::vector<glm::uvec3>& keys) {
 
 std::vector<std::uint16_t> spatialHashTexels(const SpatialHash& h) {
   std::vector<std::uint16_t> texels(4 * h.offsets.size(), 0);
-  texels[3] = h.salt;
+  if (!texels.empty()) texels[3] = h.salt;
   for (std::size_t e = 0; e < h.offsets.size(); ++e) {
     for (int c = 0; c < 3; ++c) texels[4 * e + c] = h.offsets[e][c];
   }
