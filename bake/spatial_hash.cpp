@@ -155,12 +155,17 @@ std::vector<std::uint32_t> entriesBySize(const Groups& g) {
   return order;
 }
 
-// What placing one group needs: the table, the keys' residues, a byte per slot (1: taken),
-// and the residues of the group being placed.
+// What placing one group needs: the table, a bit per slot (1: taken; 4 million slots take
+// 512 KiB, so the random probes mostly hit the cache), and the residues of the group.
 struct Placement {
+  Placement(glm::uvec3 d, std::uint32_t slotCount)
+      : dims(d), used((slotCount + 63) / 64, 0), slots(slotCount), freeCount(slotCount) {}
+  bool isUsed(std::uint32_t s) const { return (used[s >> 6] >> (s & 63)) & 1; }
+  void take(std::uint32_t s) { used[s >> 6] |= std::uint64_t(1) << (s & 63); }
+
   glm::uvec3 dims;
-  std::vector<std::uint8_t> used;
-  std::size_t freeCount = 0;
+  std::vector<std::uint64_t> used;
+  std::uint32_t slots, freeCount;
   std::uint32_t firstFree = 0;  // once single keys (placed last) begin: no free slot before it
   Random random;
   std::vector<glm::uvec3> group;
@@ -202,27 +207,27 @@ struct SlotCursor {
 // Whether every key of the group but the first lands on a free slot under `offset`.
 bool othersFit(const Placement& p, glm::uvec3 offset) {
   for (std::size_t i = 1; i < p.group.size(); ++i) {
-    if (p.used[slotOf(p.group[i], offset, p.dims)] != 0) return false;
+    if (p.isUsed(slotOf(p.group[i], offset, p.dims))) return false;
   }
   return true;
 }
 
 // Tries the first key on every free slot, from a random slot on in slot order (a sequential
-// scan of `used`: cheap even when few slots are free); marks the group's slots taken. Single
+// scan of the bits: cheap even when few slots are free); marks the group's slots taken. Single
 // keys, placed last, take the first free slot.
 bool placeGroup(Placement& p, const glm::u16vec3* residues, std::uint32_t size,
                 glm::uvec3& offset) {
   if (p.freeCount < size) return false;
   p.group.assign(residues, residues + size);
   const glm::uvec3 d = p.dims;
-  const auto count = std::uint32_t(p.used.size());
+  const std::uint32_t count = p.slots;
   const std::uint32_t start = size == 1 ? p.firstFree : p.random.below(count);
   SlotCursor at{start, slotCoord(start, d)};
   for (std::uint32_t i = 0; i < count; ++i, at.advance(d)) {
-    if (p.used[at.index] != 0) continue;
+    if (p.isUsed(at.index)) continue;
     offset = offsetTo(at.coord, p.group[0], d);
     if (!othersFit(p, offset)) continue;
-    for (glm::uvec3 r : p.group) p.used[slotOf(r, offset, d)] = 1;
+    for (glm::uvec3 r : p.group) p.take(slotOf(r, offset, d));
     p.freeCount -= size;
     if (size == 1) p.firstFree = at.index;
     return true;
@@ -249,7 +254,7 @@ Outcome construct(const std::vector<glm::uvec3>& keys, SpatialHash& h) {
   if (clash != Clash::kNone) return clash == Clash::kExact ? Outcome::kExactClash : Outcome::kClash;
   std::vector<glm::u16vec3> grouped(keys.size());  // residues in group order
   for (std::size_t i = 0; i < keys.size(); ++i) grouped[i] = residue3[groups.members[i]];
-  Placement p{d, std::vector<std::uint8_t>(h.slotCount(), 0), h.slotCount(), 0, Random{}, {}};
+  Placement p(d, std::uint32_t(h.slotCount()));
   h.offsets.assign(r, glm::u16vec3(0));
   for (std::uint32_t e : entriesBySize(groups)) {
     glm::uvec3 offset;
