@@ -162,14 +162,14 @@ TEST(Bench, CliBenchRefusesBadRequestsInOneLine) {
       {"bench --layouts spiral" + out,
        "manylight: unknown light layout 'spiral' (choose from uniform, clustered, street, mixed, "
        "coincident, two-groups, wide-intensities, bright-among-dim, far, spots-away, on-surfaces, "
-       "eight-bit-colours)\n",
+       "eight-bit-colours, uniform-ranged, street-ranged)\n",
        1},
       {"bench --counts 2000000" + out,
        "manylight: uniform-2000000: 2000000 lights exceed the light budget of 1048576\n", 1},
       {"bench --counts 12,x" + out, "manylight: --counts: 'x' is not a number in 1..67108864\n", 2},
-      {"bench --methods reference,octree" + out,
-       "manylight: unknown method 'octree', expected reference, lightcuts or "
-       "lightcuts-distance\n",
+      {"bench --methods reference,hashed" + out,
+       "manylight: unknown method 'hashed', expected reference, lightcuts, lightcuts-distance "
+       "or octree\n",
        1},
       {"bench --suite stability --cases count-4" + out, "", 2},
   };

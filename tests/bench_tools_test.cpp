@@ -37,7 +37,7 @@ TEST(BenchTools, LightLayoutsUnknownNameIsRefusedWithTheChoices) {
     EXPECT_EQ(std::string(e.what()),
               "unknown light layout 'spiral' (choose from uniform, clustered, street, mixed, "
               "coincident, two-groups, wide-intensities, bright-among-dim, far, spots-away, "
-              "on-surfaces, eight-bit-colours)");
+              "on-surfaces, eight-bit-colours, uniform-ranged, street-ranged)");
   }
 }
 
