@@ -114,6 +114,28 @@ TEST(Baked, ReadsBackWhatWasBaked) {
   EXPECT_EQ(readBytes(again), readBytes(path));
 }
 
+TEST(Baked, TheOctreeReadsBackAsBaked) {
+  const BakedScene baked = bakeScene(roomWithLights(300), {});
+  ASSERT_TRUE(baked.hasOctree);  // every other point and spot light has a range
+  const std::string path = (testFolder() / "octree.mlbake").string();
+  writeBakedScene(path, baked);
+  const BakedScene b = readBakedScene(path);
+  ASSERT_TRUE(b.hasOctree);
+  const LinklessOctree &o = baked.octree, &r = b.octree;
+  EXPECT_EQ(r.levels, o.levels);
+  EXPECT_EQ(r.origin, o.origin);
+  EXPECT_EQ(r.leafEdge, o.leafEdge);
+  EXPECT_EQ(r.nodes, o.nodes);
+  EXPECT_EQ(r.offsets, o.offsets);
+  EXPECT_EQ(r.indices, o.indices);
+  EXPECT_EQ(r.globalCount, o.globalCount);
+  EXPECT_GT(r.globalCount, 0u);
+  for (std::size_t l = 0; l < o.level.size(); ++l) {
+    EXPECT_EQ(r.level[l].dims, o.level[l].dims);
+    EXPECT_EQ(r.level[l].offsetCount, o.level[l].offsetCount);
+  }
+}
+
 TEST(Baked, ASceneWithoutLightsHasNoTrees) {
   const std::string path = (testFolder() / "dark.mlbake").string();
   Scene dark = roomWithLights(1);
@@ -121,6 +143,7 @@ TEST(Baked, ASceneWithoutLightsHasNoTrees) {
   writeBakedScene(path, bakeScene(dark, {}));
   const BakedScene b = readBakedScene(path);
   EXPECT_FALSE(b.hasTrees);
+  EXPECT_FALSE(b.hasOctree);
   EXPECT_TRUE(b.scene.lights.empty());
 }
 
@@ -208,6 +231,28 @@ TEST(Baked, DamagedAndForeignFilesAreRefused) {
   index[sectionOffset(bytes, "INST") + 4] = 100;  // instance 0's mesh
   reseal(index);
   cases.push_back({"mesh-index", index, "instances: mesh index out of range"});
+  // The octree section: origin, leaf edge, levels, 32 bytes a level, then the node texels.
+  const std::size_t octree = sectionOffset(bytes, "OCTR");
+  std::uint32_t levels;
+  std::memcpy(&levels, &bytes[octree + 16], 4);
+  std::uint64_t nodeWords;
+  const std::size_t nodes = octree + 20 + 32 * std::size_t(levels);
+  std::memcpy(&nodeWords, &bytes[nodes], 8);
+  std::string badLeaf = bytes;
+  for (std::uint64_t w = 1; w < nodeWords; w += 2) {  // the first leaf's list: far past the end
+    std::uint32_t word;
+    std::memcpy(&word, &bytes[nodes + 8 + 4 * w], 4);
+    if (!(word & kOctreeLeafBit)) continue;
+    const std::uint32_t first = 1u << 30;
+    std::memcpy(&badLeaf[nodes + 8 + 4 * (w - 1)], &first, 4);
+    break;
+  }
+  reseal(badLeaf);
+  cases.push_back({"octree-leaf", badLeaf, "light octree: a leaf's list runs past the index list"});
+  std::string badLevels = bytes;
+  badLevels[octree + 16] = 40;
+  reseal(badLevels);
+  cases.push_back({"octree-levels", badLevels, "light octree: octree levels: 40 is more than 16"});
   std::string table = bytes;
   const std::uint64_t past = bytes.size() + 10;
   std::memcpy(&table[kBakedHeaderBytes + 4 + 8], &past, 8);

@@ -5,9 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <random>
 
 #include "bake/light_pack.h"
+#include "bake/linkless_octree.h"
+#include "bake/octree_update.h"
+#include "generators/light_layouts.h"
+#include "scene/gltf_loader.h"
+#include "tests/test_support.h"
 
 namespace manylight {
 namespace {
@@ -75,6 +81,121 @@ TEST(LightOctree, ListsHoldEveryLightThatReaches) {
   std::printf("levels %d leaf %.3f nodes %zu indices %zu listed/reaching %.3f\n", o.levels,
               o.leafEdge, o.nodeCount(), o.indices.size(),
               double(check.listed) / double(check.reaching));
+}
+
+}  // namespace
+}  // namespace manylight
+
+namespace manylight {
+namespace {
+
+const Scene& room() {
+  static const Scene scene = [] {
+    RoomOptions o;
+    o.lightCount = 1;
+    o.textured = false;
+    return loadGltf(testing::roomScene(o, "octree-cpu-room.gltf"));
+  }();
+  return scene;
+}
+
+// `count` points on the room's triangles, uniformly by area.
+std::vector<glm::vec3> surfacePoints(const Scene& scene, int count, std::uint32_t seed) {
+  std::vector<std::array<glm::vec3, 3>> triangles;
+  std::vector<double> area;
+  for (const MeshInstance& inst : scene.instances) {
+    for (const Primitive& p : scene.meshes[std::size_t(inst.mesh)].primitives) {
+      for (std::size_t i = 0; i + 3 <= p.indices.size(); i += 3) {
+        std::array<glm::vec3, 3> t;
+        for (int k = 0; k < 3; ++k)
+          t[std::size_t(k)] = glm::vec3(inst.world * glm::vec4(p.positions[p.indices[i + std::size_t(k)]], 1.0f));
+        triangles.push_back(t);
+        area.push_back((area.empty() ? 0.0 : area.back()) +
+                       glm::length(glm::cross(t[1] - t[0], t[2] - t[0])));
+      }
+    }
+  }
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<glm::vec3> points;
+  for (int k = 0; k < count; ++k) {
+    const auto it = std::lower_bound(area.begin(), area.end(), u(rng) * area.back());
+    const auto& t = triangles[std::size_t(it - area.begin())];
+    double a = u(rng), b = u(rng);
+    if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+    points.push_back(t[0] + float(a) * (t[1] - t[0]) + float(b) * (t[2] - t[0]));
+  }
+  return points;
+}
+
+// Lights that reach `p` but are in neither its leaf list nor the global list of `o`, and
+// lights listed twice.
+struct Miss {
+  long long missed = 0, doubled = 0, listed = 0, reaching = 0;
+};
+Miss missesAt(const std::vector<Light>& lights, const LinklessOctree& o,
+              const std::vector<glm::vec3>& points) {
+  const LightOrder order = lightOrder(lights);
+  Miss m;
+  std::vector<int> listed(lights.size());
+  for (const glm::vec3& p : points) {
+    std::fill(listed.begin(), listed.end(), 0);
+    const OctreeList list = linklessListAt(o, p);
+    for (std::uint32_t i = 0; i < o.globalCount; ++i) ++listed[o.indices[i]];
+    for (std::uint32_t i = 0; i < list.count; ++i) ++listed[o.indices[list.first + i]];
+    for (std::size_t slot = 0; slot < lights.size(); ++slot) {
+      m.doubled += listed[slot] > 1;
+      m.listed += listed[slot];
+      if (!lightReaches(lights[std::size_t(order.scene[slot])], p)) continue;
+      ++m.reaching;
+      m.missed += listed[slot] == 0;
+    }
+  }
+  return m;
+}
+
+TEST(LinklessOctree, FindsTheLeafTheOctreeHoldsAtEveryPoint) {
+  const std::vector<Light> lights = layoutLights(LightLayout::UniformRanged, 4096, 7);
+  const LightOctree octree = buildLightOctree(lights, room());
+  const LinklessOctree packed = packLinklessOctree(octree);
+  for (const LinklessLevel& l : packed.level) {
+    EXPECT_LE(double(l.dims.x) * l.dims.y * l.dims.z, 1.1 * std::max(l.nodeCount, 1));
+  }
+  const std::vector<glm::vec3> points = surfacePoints(room(), 20000, 3);
+  for (const glm::vec3& p : points) {
+    const OctreeList a = octreeListAt(octree, p), b = linklessListAt(packed, p);
+    ASSERT_EQ(a.count, b.count);
+    if (a.count) {
+      ASSERT_EQ(b.first, a.first + packed.globalCount);
+    }
+  }
+  const Miss m = missesAt(lights, packed, points);
+  EXPECT_EQ(m.missed, 0);
+  EXPECT_EQ(m.doubled, 0);
+  EXPECT_GT(m.reaching, 20 * 20000);
+}
+
+TEST(DynamicOctree, MovedLightsAreListedWhereTheyReachAndNowhereTwice) {
+  std::vector<Light> lights = layoutLights(LightLayout::UniformRanged, 4096, 7);
+  DynamicOctree dynamic(lights, room());
+  const std::vector<glm::vec3> points = surfacePoints(room(), 5000, 4);
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<int> pick(0, int(lights.size()) - 1);
+  std::uniform_real_distribution<float> step(-0.6f, 0.6f);
+  for (int frame = 0; frame < 5; ++frame) {
+    std::vector<int> changed;
+    for (int k = 0; k < 200; ++k) changed.push_back(pick(rng));
+    std::sort(changed.begin(), changed.end());
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    for (int i : changed) lights[std::size_t(i)].position += glm::vec3(step(rng), step(rng), step(rng));
+    ASSERT_TRUE(dynamic.update(lights, changed));
+    const Miss m = missesAt(lights, dynamic.packed(), points);
+    EXPECT_EQ(m.missed, 0) << "frame " << frame;
+    EXPECT_EQ(m.doubled, 0) << "frame " << frame;
+  }
+  // A light that loses its range cannot stay in the octree.
+  lights[0].range = 0.0f;
+  EXPECT_FALSE(dynamic.update(lights, {0}));
 }
 
 }  // namespace
