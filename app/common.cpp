@@ -196,7 +196,8 @@ nlohmann::json octreeStats(const OctreeSummary& o, const OctreeFrameStats& frame
           {"covered_pixels", frame.pixels},
           {"list_entries_per_pixel", frame.listEntries},
           {"light_evaluations_per_pixel", frame.lightEvaluations},
-          {"lights_reaching_per_pixel", frame.lightsReaching}};
+          {"lights_reaching_per_pixel", frame.lightsReaching},
+          {"lights_lit_per_pixel", frame.lightsLit}};
 }
 
 std::string wholeSceneNote(const std::string& scene, const OctreeSummary& o) {

@@ -21,7 +21,7 @@ using octree::grow;
 using octree::overlaps;
 using octree::sphereBox;
 using octree::supportOf;
-using octree::withinCone;
+using octree::coneMeetsBox;
 
 Box cellBox(const LightOctree& o, int level, glm::uvec3 cell) {
   const float edge = o.leafEdge * float(1u << (o.levels - 1 - level));
@@ -68,7 +68,7 @@ struct Build {
       return;
     }
     const glm::uvec3 cell = part.nodes[level][index].cell;
-    const Box box = cellBox(octree, level, cell);
+    const Box box{part.nodes[level][index].lo, part.nodes[level][index].hi};
     bool split = level + 1 < octree.levels;
     if (split) {
       split = std::any_of(list.begin(), list.end(),
@@ -85,33 +85,28 @@ struct Build {
     // Children's lists live one level down, so the children's own splits (which write the
     // level below theirs) leave them alone.
     std::array<std::vector<std::uint32_t>, 8>& lists = children[level + 1];
-    const float half = 0.5f * (box.hi.x - box.lo.x);
+    std::array<Box, 8> boxes;
     std::uint8_t mask = 0;  // the children geometry touches
     for (int c = 0; c < 8; ++c) {
       lists[c].clear();
       const glm::uvec3 childCell = cell * 2u + glm::uvec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-      if (!surfaces || surfaces->occupied(level + 1, childCell)) mask |= std::uint8_t(1u << c);
+      boxes[std::size_t(c)] = cellBox(octree, level + 1, childCell);
+      if (surfaces) {
+        const SurfaceCell* geometry = surfaces->find(level + 1, childCell);
+        if (!geometry) continue;
+        boxes[std::size_t(c)] = {geometry->lo, geometry->hi};
+      }
+      mask |= std::uint8_t(1u << c);
     }
-    const glm::vec3 mid = box.lo + glm::vec3(half);
-    const float childRho = 0.8660254f * half + margin;  // a child's bounding sphere
     for (std::uint32_t slot : list) {
       const Support& sp = supports[slot];
-      // Squared distances from the bounding sphere's centre to the lower and upper half of
-      // the node along each axis; a child's is the sum of its halves'.
-      const glm::vec3 low = glm::max(glm::max(box.lo - sp.centre, sp.centre - mid), glm::vec3(0.0f));
-      const glm::vec3 high = glm::max(glm::max(mid - sp.centre, sp.centre - box.hi), glm::vec3(0.0f));
-      const glm::vec3 low2 = low * low, high2 = high * high;
       const float reach = (sp.radius + margin) * (sp.radius + margin);
       for (int c = 0; c < 8; ++c) {
         if (!(mask & (1u << c))) continue;
-        const float d2 = ((c & 1) ? high2.x : low2.x) + ((c & 2) ? high2.y : low2.y) +
-                         ((c & 4) ? high2.z : low2.z);
-        if (d2 > reach) continue;
-        if (sp.spot) {
-          const glm::vec3 centre =
-              box.lo + (glm::vec3(c & 1, (c >> 1) & 1, (c >> 2) & 1) + 0.5f) * half;
-          if (!withinCone(sp, centre, childRho)) continue;
-        }
+        const Box& b = boxes[std::size_t(c)];
+        const glm::vec3 d = glm::max(glm::max(b.lo - sp.centre, sp.centre - b.hi), glm::vec3(0.0f));
+        if (glm::dot(d, d) > reach) continue;
+        if (sp.spot && !coneMeetsBox(sp, b, margin)) continue;
         lists[c].push_back(slot);
       }
     }
@@ -124,6 +119,8 @@ struct Build {
       if (!(mask & (1u << c))) continue;
       OctreeNode child;
       child.cell = cell * 2u + glm::uvec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+      child.lo = boxes[std::size_t(c)].lo;
+      child.hi = boxes[std::size_t(c)].hi;
       next.push_back(child);
     }
     OctreeNode& n = part.nodes[level][index];
@@ -297,8 +294,14 @@ LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scen
     }
     Part main;
     main.nodes.resize(std::size_t(o.levels));
-    main.nodes[0].push_back(OctreeNode{});
-    if (!top.surfaces || top.surfaces->occupied(0, glm::uvec3(0))) top.node(main, 0, 0, inOctree);
+    OctreeNode root;
+    const Box rootBox = cellBox(o, 0, glm::uvec3(0));
+    root.lo = rootBox.lo;
+    root.hi = rootBox.hi;
+    const SurfaceCell* geometry = top.surfaces ? top.surfaces->find(0, glm::uvec3(0)) : nullptr;
+    if (geometry) root.lo = geometry->lo, root.hi = geometry->hi;
+    main.nodes[0].push_back(root);
+    if (!top.surfaces || geometry) top.node(main, 0, 0, inOctree);
     if (top.taskLevel >= 0) buildTasks(top, main, threads);
     if (overflow) continue;
     o.nodes = std::move(main.nodes);

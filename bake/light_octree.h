@@ -63,6 +63,9 @@ struct OctreeNode {
                                 // the next level (only those in childMask)
   std::uint8_t childMask = 0;   // branch: bit x + 2y + 4z set where that child exists
   bool leaf = true;
+  // The box in its cell that holds the geometry there (bake/octree_surfaces.h; the cell
+  // without geometry): what its lights were tested against.
+  glm::vec3 lo{0.0f}, hi{0.0f};
 };
 
 struct LightOctree {

@@ -57,17 +57,43 @@ bool withinCone(const Support& s, glm::vec3 c, float rho) {
 
 namespace {
 
-bool withinCone(const Support& s, const Box& b, float margin) {
-  return withinCone(s, 0.5f * (b.lo + b.hi), 0.5f * glm::length(b.hi - b.lo) + margin);
+// Whether the ball of radius `rho` around `c` lies inside the cone, ignoring its range: its
+// distance to the cone's side is at least rho.
+bool insideCone(const Support& s, glm::vec3 c, float rho) {
+  const glm::vec3 v = c - s.position;
+  const float along = glm::dot(v, s.axis);
+  const float across = std::sqrt(std::max(glm::dot(v, v) - along * along, 0.0f));
+  return along > rho && s.sinOuter * along - s.cosOuter * across >= rho;
 }
 
 }  // namespace
+
+bool coneMeetsBox(const Support& s, const Box& b, float margin, int depth) {
+  const glm::vec3 size = b.hi - b.lo;
+  const glm::vec3 c = 0.5f * (b.lo + b.hi);
+  const float rho = 0.5f * glm::length(size) + margin;
+  if (!withinCone(s, c, rho)) return false;
+  if (depth == 0 || insideCone(s, c, rho)) return true;
+  // Halves along the axes not much thinner than the longest, so a thin slab splits in its
+  // plane only.
+  const float longest = std::max({size.x, size.y, size.z});
+  const glm::bvec3 split(size.x > 0.25f * longest, size.y > 0.25f * longest,
+                         size.z > 0.25f * longest);
+  const glm::vec3 half = glm::mix(size, 0.5f * size, split);
+  for (int k = 0; k < 8; ++k) {
+    const glm::ivec3 o(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+    if ((o.x && !split.x) || (o.y && !split.y) || (o.z && !split.z)) continue;
+    const glm::vec3 lo = b.lo + glm::vec3(o) * half;
+    if (coneMeetsBox(s, {lo, lo + half}, margin, depth - 1)) return true;
+  }
+  return false;
+}
 
 // Whether the support may overlap the box grown by `margin` (conservative).
 bool overlaps(const Support& s, const Box& b, float margin) {
   const float reach = s.radius + margin;
   if (squaredDistanceToBox(s.centre, b) > reach * reach) return false;
-  return !s.spot || withinCone(s, b, margin);
+  return !s.spot || coneMeetsBox(s, b, margin);
 }
 
 // Whether every point of the box is inside the support, `margin` from its boundary.

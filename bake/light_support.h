@@ -24,6 +24,9 @@ struct Box {
 Support supportOf(const Light& light);
 // Whether the spot's cone may meet the ball of radius `rho` around `c`.
 bool withinCone(const Support& s, glm::vec3 c, float rho);
+// Whether the spot's cone may meet the box grown by `margin`: the ball around the box
+// against the cone, then, where that cannot tell, the box's halves `depth` times over.
+bool coneMeetsBox(const Support& s, const Box& b, float margin, int depth = 1);
 // Whether the support may overlap the box grown by `margin`.
 bool overlaps(const Support& s, const Box& b, float margin);
 // Whether every point of the box is inside the support, `margin` from its boundary.

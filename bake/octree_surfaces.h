@@ -9,10 +9,16 @@
 
 namespace manylight {
 
+struct SurfaceCell {
+  std::uint64_t key;  // surfaceCellKey
+  glm::vec3 lo, hi;   // the box, inside the cell, that holds the geometry it touches
+};
+
 struct SurfaceCells {
-  // Per octree level, the sorted keys (surfaceCellKey) of the cells geometry touches.
-  std::vector<std::vector<std::uint64_t>> levels;
-  bool occupied(int level, glm::uvec3 cell) const;
+  // Per octree level, the cells geometry touches, sorted by key.
+  std::vector<std::vector<SurfaceCell>> levels;
+  // The cell's entry, or null where no geometry touches it.
+  const SurfaceCell* find(int level, glm::uvec3 cell) const;
 };
 
 inline std::uint64_t surfaceCellKey(glm::uvec3 c) {
@@ -21,9 +27,11 @@ inline std::uint64_t surfaceCellKey(glm::uvec3 c) {
 
 // The cells, of `levels` levels whose deepest has cells of `leafEdge` from `origin`, that
 // each triangle, line and point of `scene` (in world space) touches or comes within
-// `margin` of. Conservative: a cell is listed when its box, grown by `margin`, meets the
+// `margin` of, each with the box its primitives' bounding boxes (grown by `margin`) cover
+// inside it. Conservative: a cell is listed when its box, grown by `margin`, meets the
 // primitive's bounding box and, for a triangle, its plane; so every fragment's cell is
-// listed, with some cells beside a triangle's edges too.
+// listed (with some cells beside a triangle's edges too), and every fragment lies in its
+// cell's box: a wall's cells get a thin slab, which is what the octree tests lights against.
 SurfaceCells surfaceCells(const Scene& scene, glm::vec3 origin, float leafEdge, int levels,
                           float margin);
 

@@ -51,9 +51,7 @@ DynamicOctree::DynamicOctree(const std::vector<Light>& lights, const Scene& scen
 
 void DynamicOctree::visit(int level, std::size_t index, const Visit& v) {
   const OctreeNode& n = octree_.nodes[std::size_t(level)][index];
-  const float edge = octree_.leafEdge * float(1u << (octree_.levels - 1 - level));
-  const glm::vec3 lo = octree_.origin + glm::vec3(n.cell) * edge;
-  if (!octree::overlaps(*v.support, {lo, lo + glm::vec3(edge)}, margin_)) return;
+  if (!octree::overlaps(*v.support, {n.lo, n.hi}, margin_)) return;
   if (n.leaf) {
     std::vector<std::uint32_t>& list = lists_[std::size_t(level)][index];
     // Lists stay sorted and hold a light once: an add finds it present where the build's

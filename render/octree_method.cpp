@@ -99,7 +99,7 @@ OctreeFrameStats OctreeMethod::frameStats(const GBuffer& gbuffer, bool bruteForc
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   OctreeFrameStats stats;
-  long long entries = 0, evaluated = 0, reaching = 0;
+  long long entries = 0, evaluated = 0, reaching = 0, lit = 0;
   std::vector<char> listed(bruteForce ? lights_.size() : 0);
   for (std::size_t i = 0; i < std::size_t(w) * h; ++i) {
     if (normal[4 * i + 3] == 0.0f) continue;  // background
@@ -112,10 +112,11 @@ OctreeFrameStats OctreeMethod::frameStats(const GBuffer& gbuffer, bool bruteForc
       const Light& light = lights_[octree_.indices[at]];
       const glm::vec3 d = light.position - p;
       const bool ranged = light.type != LightType::Directional && light.range > 0.0f;
-      // The shader's range test, and the window's support: the same lights.
+      // The shader's range test passes where the window is non-zero.
       const bool inRange = !ranged || glm::dot(d, d) < light.range * light.range;
       evaluated += inRange;
       reaching += inRange;
+      lit += lightReaches(light, p);
       if (bruteForce) listed[octree_.indices[at]] = 1;
     }
     for (std::size_t slot = 0; slot < listed.size(); ++slot) {
@@ -127,6 +128,7 @@ OctreeFrameStats OctreeMethod::frameStats(const GBuffer& gbuffer, bool bruteForc
     stats.listEntries = double(entries) / double(stats.pixels);
     stats.lightEvaluations = double(evaluated) / double(stats.pixels);
     stats.lightsReaching = double(reaching) / double(stats.pixels);
+    stats.lightsLit = double(lit) / double(stats.pixels);
   }
   return stats;
 }

@@ -20,7 +20,10 @@ struct OctreeFrameStats {
   double listEntries = 0.0;       // list entries per pixel: global list + leaf list
   double lightEvaluations = 0.0;  // of which evaluated in full (the rest fail the shader's
                                   // range test, at the cost of one texel read)
-  double lightsReaching = 0.0;    // lights whose range window is non-zero there
+  double lightsReaching = 0.0;    // lights whose range window is non-zero there (of those
+                                  // listed: a spot whose cone misses the cell may not be)
+  double lightsLit = 0.0;         // of which a spot's outer cone holds the point too: the
+                                  // lights that can light it (bake/light_octree.h)
   long long missed = 0;          // with bruteForce: lights reaching a pixel not in its lists
 };
 
