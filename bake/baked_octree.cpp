@@ -17,6 +17,7 @@ void writeOctree(Writer& w, const LinklessOctree& o) {
   w.array(o.nodes);
   w.array(o.offsets);
   w.array(o.indices);
+  w.array(o.order);
   w.put(o.globalCount);
   w.put(o.maxLeafCount);
   w.array(o.wholeScene);
@@ -57,6 +58,13 @@ void checkLists(Reader& r, const LinklessOctree& o, std::size_t lights) {
     if (std::uint64_t(o.nodes[t]) + count > o.indices.size() || count > o.maxLeafCount)
       r.fail("a leaf's list runs past the index list");
   }
+  std::vector<char> seen(lights, 0);
+  if (o.order.size() != lights) r.fail("the light order does not hold every light");
+  for (int index : o.order) {
+    if (index < 0 || std::size_t(index) >= lights || seen[std::size_t(index)])
+      r.fail("the light order does not hold every light once");
+    seen[std::size_t(index)] = 1;
+  }
   for (std::uint32_t index : o.indices) {
     if (index >= lights) r.fail("a list names light " + std::to_string(index) + " of " +
                                 std::to_string(lights));
@@ -87,6 +95,7 @@ LinklessOctree readOctree(Reader& r, std::size_t lights) {
   o.nodes = r.array<std::uint32_t>();
   o.offsets = r.array<std::uint16_t>();
   o.indices = r.array<std::uint32_t>();
+  o.order = r.array<int>();
   o.globalCount = r.get<std::uint32_t>();
   o.maxLeafCount = r.get<std::uint32_t>();
   o.wholeScene = r.array<int>();

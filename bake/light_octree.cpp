@@ -241,6 +241,47 @@ void shape(LightOctree& o, const Box& domain, float margin, float leafEdge) {
   o.origin = domain.lo - glm::vec3(2.0f * margin);
 }
 
+// Spreads the low 21 bits of v to every third bit.
+std::uint64_t spread(std::uint64_t v) {
+  v &= 0x1FFFFF;
+  v = (v | v << 32) & 0x1F00000000FFFFull;
+  v = (v | v << 16) & 0x1F0000FF0000FFull;
+  v = (v | v << 8) & 0x100F00F00F00F00Full;
+  v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+  v = (v | v << 2) & 0x1249249249249249ull;
+  return v;
+}
+
+// Lights without a range in lightOrder's order, then the ranged ones by the Morton code of
+// their positions over the box that holds them.
+std::vector<int> octreeOrder(const std::vector<Light>& lights) {
+  std::vector<int> order;
+  Bounds box;
+  for (int i : lightOrder(lights).scene) {
+    const Light& l = lights[std::size_t(i)];
+    if (l.type == LightType::Directional || !(l.range > 0.0f)) {
+      order.push_back(i);
+    } else {
+      box.add(l.position);
+    }
+  }
+  const std::size_t unranged = order.size();
+  std::vector<std::pair<std::uint64_t, int>> coded;
+  const glm::vec3 scale = 2097151.0f / glm::max(box.max - box.min, glm::vec3(1e-30f));
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const Light& l = lights[i];
+    if (l.type == LightType::Directional || !(l.range > 0.0f)) continue;
+    const glm::vec3 q = glm::clamp((l.position - box.min) * scale, glm::vec3(0.0f), glm::vec3(2097151.0f));
+    coded.push_back({spread(std::uint64_t(q.x)) | spread(std::uint64_t(q.y)) << 1 |
+                         spread(std::uint64_t(q.z)) << 2,
+                     int(i)});
+  }
+  std::sort(coded.begin(), coded.end());
+  order.resize(unranged + coded.size());
+  for (std::size_t k = 0; k < coded.size(); ++k) order[unranged + k] = coded[k].second;
+  return order;
+}
+
 }  // namespace
 
 float octreeLeafEdge(const std::vector<Light>& lights) {
@@ -264,7 +305,9 @@ LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scen
                              const OctreeOptions& options) {
   LightOctree o;
   const Bounds geometry = scene.bounds();
-  const LightOrder order = lightOrder(lights);
+  LightOrder order;
+  order.scene = octreeOrder(lights);
+  o.order = order.scene;
   std::vector<Support> supports(order.scene.size());
   std::vector<std::uint32_t> inOctree;
   Box domain;

@@ -73,8 +73,13 @@ struct LightOctree {
   float leafEdge = 1.0f;   // edge of a cell at the deepest level (levels − 1)
   int levels = 1;          // level k holds cells of edge leafEdge · 2^(levels − 1 − k)
   std::vector<std::vector<OctreeNode>> nodes;  // per level; level 0 holds the root alone
-  std::vector<std::uint32_t> indices;          // the leaves' lists: light texture slots
-  std::vector<std::uint32_t> global;           // slots of lights evaluated at every pixel
+  // The octree's light texture: the scene index of the light in each slot. Lights without
+  // a range first, then the ranged ones along a Morton curve through their positions, so a
+  // leaf's lights lie close together in it (a million lights' texture does not fit in a
+  // cache; a leaf's reads then share its lines).
+  std::vector<int> order;
+  std::vector<std::uint32_t> indices;  // the leaves' lists: slots of `order`
+  std::vector<std::uint32_t> global;   // slots of lights evaluated at every pixel
   std::vector<int> wholeScene;  // scene indices of ranged lights whose support holds the scene
   std::vector<int> unreached;   // scene indices of ranged lights that reach no geometry
   std::uint32_t maxLeafCount = 0;
@@ -83,8 +88,7 @@ struct LightOctree {
   std::size_t nodeCount() const;
 };
 
-// Builds the octree of `lights` (slots in light texture order, bake/light_pack.h's
-// lightOrder) over the geometry of `scene`: refined only in the cells its primitives touch
+// Builds the octree of `lights` over the geometry of `scene`: refined only in the cells its primitives touch
 // (bake/octree_surfaces.h). A scene without geometry gets the whole octree of the lights'
 // supports, refined everywhere. Never throws on valid lights.
 LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scene,

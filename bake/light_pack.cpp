@@ -34,10 +34,14 @@ PackedLights packLights(const std::vector<Light>& lights) {
   const LightOrder order = lightOrder(lights);
   packed.pointStart = order.pointStart;
   packed.spotStart = order.spotStart;
-  std::vector<float>& out = packed.texels;
-  out.assign(lights.size() * layout::kFloatsPerLight, 0.0f);
-  for (std::size_t i = 0; i < order.scene.size(); ++i) {
-    const Light& l = lights[order.scene[i]];
+  packed.texels = packLightTexels(lights, order.scene);
+  return packed;
+}
+
+std::vector<float> packLightTexels(const std::vector<Light>& lights, const std::vector<int>& order) {
+  std::vector<float> out(order.size() * layout::kFloatsPerLight, 0.0f);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Light& l = lights[std::size_t(order[i])];
     float* t = &out[i * layout::kFloatsPerLight];
     const glm::vec3 radiant = l.colour * l.intensity;
     if (l.type == LightType::Directional) {
@@ -53,7 +57,7 @@ PackedLights packLights(const std::vector<Light>& lights) {
     t[8] = radiant.r, t[9] = radiant.g, t[10] = radiant.b;
     t[11] = cone.offset;
   }
-  return packed;
+  return out;
 }
 
 }  // namespace manylight

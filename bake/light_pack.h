@@ -23,6 +23,8 @@ struct PackedLights {
 
 // Packs `lights` in lightOrder(lights).
 PackedLights packLights(const std::vector<Light>& lights);
+// The texels of lights[order[0]], lights[order[1]], … (kFloatsPerLight floats each).
+std::vector<float> packLightTexels(const std::vector<Light>& lights, const std::vector<int>& order);
 
 // A spot's cone as the light texture holds it: the shader's falloff is
 // smoothstep(clamp(cos · scale + offset, 0, 1)), cos to the spot's direction.

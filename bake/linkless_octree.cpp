@@ -19,6 +19,7 @@ LinklessOctree packLinklessOctree(const LightOctree& octree) {
   out.globalCount = std::uint32_t(octree.global.size());
   out.maxLeafCount = octree.maxLeafCount;
   out.wholeScene = octree.wholeScene;
+  out.order = octree.order;
   out.unreached = octree.unreached.size();
   out.indices.reserve(octree.global.size() + octree.indices.size());
   out.indices = octree.global;

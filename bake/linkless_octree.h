@@ -8,8 +8,8 @@
 //              branch  (0, child mask: bit x + 2y + 4z where that child exists)
 //              leaf    (first, kOctreeLeafBit | count): its list is indices[first, first + count)
 //   offsets  RGBA16UI, the offset tables of all levels one after another (x, y, z, 0)
-//   indices  R32UI, light texture slots: the global list (every pixel's) first, then the
-//            leaves' lists
+//   indices  R32UI, slots of the octree's own light texture (LightOctree::order): the global
+//            list (every pixel's) first, then the leaves' lists
 //
 // The shader looks up only nodes that exist (a parent's mask says which), so the tables hold
 // no keys. Levels, origin and leaf edge come as uniforms (LinklessLevel).
@@ -38,7 +38,8 @@ struct LinklessOctree {
   std::vector<LinklessLevel> level;
   std::vector<std::uint32_t> nodes;    // 2 words per texel
   std::vector<std::uint16_t> offsets;  // 4 values per texel
-  std::vector<std::uint32_t> indices;
+  std::vector<std::uint32_t> indices;  // slots of `order`
+  std::vector<int> order;              // LightOctree::order: the lights' texture order
   std::uint32_t globalCount = 0;    // the global list's length
   std::uint32_t maxLeafCount = 0;   // the longest leaf list
   std::vector<int> wholeScene;      // LightOctree::wholeScene

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "bake/light_pack.h"
 #include "bake/light_support.h"
 
 namespace manylight {
@@ -25,7 +24,7 @@ DynamicOctree::DynamicOctree(const std::vector<Light>& lights, const Scene& scen
   octree_ = buildLightOctree(lights, scene, options);
   packed_ = packLinklessOctree(octree_);
   margin_ = octree_.margin;
-  sceneOfSlot_ = lightOrder(lights).scene;
+  sceneOfSlot_ = octree_.order;
   slotOfScene_.assign(lights.size(), 0);
   for (std::size_t slot = 0; slot < sceneOfSlot_.size(); ++slot) {
     slotOfScene_[std::size_t(sceneOfSlot_[slot])] = int(slot);

@@ -24,8 +24,8 @@ gl::TextureBuffer upload(std::vector<T> data, std::size_t perTexel, GLenum forma
 
 OctreeMethod::OctreeMethod(LinklessOctree octree, const std::vector<Light>& lights)
     : octree_(std::move(octree)) {
-  const LightOrder order = lightOrder(lights);
-  for (int index : order.scene) lights_.push_back(lights[std::size_t(index)]);
+  for (int index : octree_.order) lights_.push_back(lights[std::size_t(index)]);
+  lightTexture_ = upload(packLightTexels(lights, octree_.order), 4, GL_RGBA32F, "octree lights");
   nodes_ = upload(octree_.nodes, 2, GL_RG32UI, "light octree nodes");
   offsets_ = upload(octree_.offsets, 4, GL_RGBA16UI, "light octree hash offsets");
   indices_ = upload(octree_.indices, 1, GL_R32UI, "light octree lists");
@@ -34,7 +34,8 @@ OctreeMethod::OctreeMethod(LinklessOctree octree, const std::vector<Light>& ligh
 void OctreeMethod::replace(const LinklessOctree& octree, const std::vector<Light>& lights) {
   octree_ = octree;
   lights_.clear();
-  for (int index : lightOrder(lights).scene) lights_.push_back(lights[std::size_t(index)]);
+  for (int index : octree_.order) lights_.push_back(lights[std::size_t(index)]);
+  lightTexture_ = upload(packLightTexels(lights, octree_.order), 4, GL_RGBA32F, "octree lights");
   nodes_ = upload(octree_.nodes, 2, GL_RG32UI, "light octree nodes");
   indices_ = upload(octree_.indices, 1, GL_R32UI, "light octree lists");
 }
@@ -49,6 +50,9 @@ int OctreeMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const Vie
                         {"oRadiance"});
   shader.use();
   bindLightingInputs(shader, gbuffer, scene, view);
+  // The octree's own light texture, in its order, in place of the scene's.
+  glActiveTexture(GL_TEXTURE4);
+  glBindTexture(GL_TEXTURE_BUFFER, lightTexture_.texture.id());
   const gl::TextureBuffer* buffers[3] = {&nodes_, &offsets_, &indices_};
   const char* names[3] = {"uOctreeNodes", "uOctreeOffsets", "uOctreeIndices"};
   for (int i = 0; i < 3; ++i) {

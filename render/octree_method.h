@@ -52,7 +52,7 @@ class OctreeMethod {
  private:
   LinklessOctree octree_;  // kept for the statistics
   std::vector<Light> lights_;  // in light texture order
-  gl::TextureBuffer nodes_, offsets_, indices_;
+  gl::TextureBuffer lightTexture_, nodes_, offsets_, indices_;
 };
 
 }  // namespace manylight

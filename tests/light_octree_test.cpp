@@ -49,7 +49,6 @@ struct ListCheck {
 // list lengths against the lights reaching.
 ListCheck checkLists(const std::vector<Light>& lights, const LightOctree& o, float half,
                      int points, std::uint32_t seed) {
-  const LightOrder order = lightOrder(lights);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-half, half);
   ListCheck check;
@@ -62,7 +61,7 @@ ListCheck checkLists(const std::vector<Light>& lights, const LightOctree& o, flo
     for (std::uint32_t slot : o.global) listed[slot] = 1;
     check.listed += list.count + o.global.size();
     for (std::size_t slot = 0; slot < lights.size(); ++slot) {
-      if (!lightReaches(lights[std::size_t(order.scene[slot])], p)) continue;
+      if (!lightReaches(lights[std::size_t(o.order[slot])], p)) continue;
       ++check.reaching;
       if (!listed[slot]) ++check.missed;
     }
@@ -135,7 +134,6 @@ struct Miss {
 };
 Miss missesAt(const std::vector<Light>& lights, const LinklessOctree& o,
               const std::vector<glm::vec3>& points) {
-  const LightOrder order = lightOrder(lights);
   Miss m;
   std::vector<int> listed(lights.size());
   for (const glm::vec3& p : points) {
@@ -146,7 +144,7 @@ Miss missesAt(const std::vector<Light>& lights, const LinklessOctree& o,
     for (std::size_t slot = 0; slot < lights.size(); ++slot) {
       m.doubled += listed[slot] > 1;
       m.listed += listed[slot];
-      if (!lightReaches(lights[std::size_t(order.scene[slot])], p)) continue;
+      if (!lightReaches(lights[std::size_t(o.order[slot])], p)) continue;
       ++m.reaching;
       m.missed += listed[slot] == 0;
     }
