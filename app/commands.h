@@ -118,7 +118,7 @@ struct RenderArgs {
   std::string ambient, statsPath;  // ambient empty: 0, or the default rig's
   std::string aov;                 // empty: the lit image
   std::string exposure = "auto", toneMap = "pbr-neutral";
-  MethodArgs lighting{"reference"};
+  MethodArgs lighting{"auto"};
   int camera = -1;
   SceneArgs input;
   bool verbose = false;
@@ -128,7 +128,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart);
 
 struct PlayArgs {
   std::string scene, output, size = "640x360", backend = "auto", statsPath;
-  MethodArgs lighting{"lightcuts"};
+  MethodArgs lighting{"auto"};
   int camera = -1, frames = 0;
   float orbit = 360.0f, fps = 30.0f;
   std::string exposure = "auto", toneMap = "pbr-neutral";

@@ -150,9 +150,10 @@ void addMethodOptions(CLI::App* app, MethodArgs& a) {
              "--method", a.method,
              "Lighting method: reference (every light at every pixel), lightcuts (error-bounded "
              "cuts through a light tree), lightcuts-distance (cuts by radius of influence), "
-             "octree (exact: each pixel's lights from a hashed light octree)")
+             "octree (exact: each pixel's lights from a hashed light octree), auto (the "
+             "fastest of them for the scene; --verbose says which and why)")
           ->capture_default_str()
-          ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance", "octree"}));
+          ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance", "octree", "auto"}));
   app->add_option("--error", a.error, "lightcuts: relative error ε of the stopping rule")
       ->capture_default_str()
       ->check(CLI::Range(1e-6f, 1.0f));

@@ -161,7 +161,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
     nlohmann::json stats = {
         {"scene", a.scene},
         {"output", a.output},
-        {"method", methodName(r.method)},
+        {"method", methodName(out.method)},
         {"backend", context->backend()},
         {"renderer", context->renderer()},
         {"width", r.width},
@@ -182,7 +182,8 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         {"output_closed", sink.closed()},
         {"total_ms", msSince(processStart)}};
     if (out.lightsAnimated) stats["frame_move_lights_ms"] = out.moveMs;
-    if (r.method == Method::Lightcuts || r.method == Method::LightcutsDistance) {
+    if (!out.methodReason.empty()) stats["method_reason"] = out.methodReason;
+    if (out.method == Method::Lightcuts || out.method == Method::LightcutsDistance) {
       stats["frame_cut_ms"] = out.cutMs;
       stats["frame_cuts_made"] = out.cutsMade;
       stats["frame_cuts_kept"] = out.cutsKept;
@@ -195,6 +196,10 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   }
   if (sink.closed())
     std::cerr << "manylight: output closed after " << out.framesRendered - 1 << " frames\n";
+  if (a.verbose && !out.methodReason.empty()) {
+    std::cerr << "manylight: " << a.scene << ": auto: " << methodName(out.method) << ": "
+              << out.methodReason << "\n";
+  }
   if (a.verbose) {
     std::cerr << "manylight: " << out.framesRendered << " frames, "
               << (renderSum > 0 ? 1000.0 * out.framesRendered / renderSum : 0) << " fps rendering, "

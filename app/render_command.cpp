@@ -55,12 +55,6 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     for (const std::string& e : scene.ignoredExtensions) std::cerr << " " << e;
     std::cerr << "\n";
   }
-  if (request.method == Method::Reference && request.aov == Aov::None &&
-      a.lighting.methodOption->count() == 0) {
-    const std::string note =
-        slowReferenceNote(scenePath, scene.lights.size(), request.width, request.height);
-    if (!note.empty()) std::cerr << "manylight: " << note << "\n";
-  }
   RenderRequest bakedRequest = request;
   if (baked.hasTrees) bakedRequest.prebuiltTrees = &baked.packed;
   if (baked.hasOctree) bakedRequest.prebuiltOctree = &baked.octree;
@@ -88,7 +82,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
   nlohmann::json stats = {
       {"scene", scenePath},
       {"output", output},
-      {"method", methodName(request.method)},
+      {"method", methodName(out.method)},
       {"backend", context.backend()},
       {"renderer", context.renderer()},
       {"gl_version", context.version()},
@@ -107,15 +101,21 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
       {"boundary_edges", scene.topology.boundaryEdges},
       {"non_manifold_edges", scene.topology.nonManifoldEdges},
   };
+  if (!out.methodReason.empty()) {
+    stats["method_reason"] = out.methodReason;
+    if (a.verbose)
+      std::cerr << "manylight: " << scenePath << ": auto: " << methodName(out.method) << ": "
+                << out.methodReason << "\n";
+  }
   const std::string note = wholeSceneNote(scenePath, out.octree);
   if (!note.empty()) std::cerr << "manylight: " << note << "\n";
   if (request.aov != Aov::None) {
     stats["aov"] = aovChannel(request.aov).name;
-  } else if (request.method == Method::Octree) {
+  } else if (out.method == Method::Octree) {
     stats["bake_ms"] = out.bakeMs;
     stats["octree"] = octreeStats(out.octree, out.frame.octree);
     stats["baked_octree"] = baked.hasOctree;
-  } else if (request.method != Method::Reference) {
+  } else if (out.method != Method::Reference) {
     const CutStats& c = out.frame.cuts;
     stats["bake_ms"] = out.bakeMs;
     stats["cut_ms"] = out.frame.cutMs;
@@ -129,7 +129,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     stats["light_evaluations_per_pixel"] = c.lightEvaluations;
     stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
     stats["covered_pixels"] = c.pixels;
-    if (request.method == Method::Lightcuts) {
+    if (out.method == Method::Lightcuts) {
       stats["error"] = request.lightcuts.error;
       stats["error_mode"] = a.lighting.errorMode;
     }

@@ -14,6 +14,9 @@ namespace manylight {
 
 namespace {
 
+// Lists this long are split across threads (the nodes above the task level).
+constexpr std::size_t kParallelList = 1 << 16;
+
 using octree::Box;
 using octree::Support;
 using octree::contains;
@@ -48,6 +51,7 @@ struct Build {
   std::atomic<bool>& overflow;
   std::size_t budget = kMaxOctreeIndices;  // list entries at most
   bool keepEmpty = false;                  // OctreeOptions::dynamic
+  int threads = 1;                         // for the lists of the nodes above the tasks
   // Per level: the lists of the node being split's children (reused down the recursion).
   std::vector<std::array<std::vector<std::uint32_t>, 8>> children;
 
@@ -58,6 +62,26 @@ struct Build {
     std::vector<std::uint32_t> list;
   };
   std::vector<Task> tasks;
+
+  // Appends each of the `n` slots at `slots` to the lists of the children in `mask` whose
+  // geometry box its support may overlap.
+  void sortIntoChildren(const std::uint32_t* slots, std::size_t n, const std::array<Box, 8>& boxes,
+                        std::uint8_t mask, int coneDepth,
+                        std::array<std::vector<std::uint32_t>, 8>& lists) const {
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t slot = slots[i];
+      const Support& sp = supports[slot];
+      const float reach = (sp.radius + margin) * (sp.radius + margin);
+      for (int c = 0; c < 8; ++c) {
+        if (!(mask & (1u << c))) continue;
+        const Box& b = boxes[std::size_t(c)];
+        const glm::vec3 d = glm::max(glm::max(b.lo - sp.centre, sp.centre - b.hi), glm::vec3(0.0f));
+        if (glm::dot(d, d) > reach) continue;
+        if (sp.spot && !coneMeetsBox(sp, b, margin, coneDepth)) continue;
+        lists[c].push_back(slot);
+      }
+    }
+  }
 
   // Makes node `index` of `level` in `part` a leaf or a branch from `list`, the slots of
   // its parent's list that overlap it, and builds its children (depth first).
@@ -98,16 +122,27 @@ struct Build {
       }
       mask |= std::uint8_t(1u << c);
     }
-    for (std::uint32_t slot : list) {
-      const Support& sp = supports[slot];
-      const float reach = (sp.radius + margin) * (sp.radius + margin);
+    // Cones against half boxes only for the deepest cells, where the lists are final; above,
+    // a looser list only costs the children's tests.
+    const int coneDepth = level + 2 == octree.levels ? 1 : 0;
+    if (list.size() < kParallelList || threads <= 1) {
+      sortIntoChildren(list.data(), list.size(), boxes, mask, coneDepth, lists);
+    } else {
+      // The top nodes' lists hold most lights: split them in chunks on every thread, joined
+      // in order so each child's list stays sorted.
+      std::vector<std::array<std::vector<std::uint32_t>, 8>> parts(static_cast<std::size_t>(threads));
+      std::vector<std::thread> pool;
+      const std::size_t chunk = (list.size() + std::size_t(threads) - 1) / std::size_t(threads);
+      for (int t = 0; t < threads; ++t) {
+        const std::size_t begin = std::min(list.size(), chunk * std::size_t(t));
+        const std::size_t n = std::min(chunk, list.size() - begin);
+        pool.emplace_back([&, t, begin, n] {
+          sortIntoChildren(list.data() + begin, n, boxes, mask, coneDepth, parts[std::size_t(t)]);
+        });
+      }
+      for (std::thread& th : pool) th.join();
       for (int c = 0; c < 8; ++c) {
-        if (!(mask & (1u << c))) continue;
-        const Box& b = boxes[std::size_t(c)];
-        const glm::vec3 d = glm::max(glm::max(b.lo - sp.centre, sp.centre - b.hi), glm::vec3(0.0f));
-        if (glm::dot(d, d) > reach) continue;
-        if (sp.spot && !coneMeetsBox(sp, b, margin)) continue;
-        lists[c].push_back(slot);
+        for (const auto& part : parts) lists[c].insert(lists[c].end(), part[c].begin(), part[c].end());
       }
     }
     for (int c = 0; c < 8; ++c) {
@@ -326,8 +361,10 @@ LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scen
     std::atomic<std::size_t> entries{0};
     std::atomic<bool> overflow{false};
     Build top(o, supports, margin, entries, overflow);
-    top.taskLevel = o.levels > 3 ? 2 : -1;
+    // Tasks a few levels down, so that geometry in one corner of the root still makes many.
+    top.taskLevel = o.levels > 5 ? 4 : o.levels > 3 ? 2 : -1;
     top.keepEmpty = options.dynamic;
+    top.threads = threads;
     top.budget = std::min(kMaxOctreeIndices,
                           std::max(kOctreeEntriesPerLight * inOctree.size(), kMinOctreeBudget));
     SurfaceCells surfaces;

@@ -21,6 +21,8 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
   out.defaultRig = p.defaultRig;
   out.lightCount = p.lightCount;
   out.bakeMs = p.bakeMs;
+  out.method = p.method;
+  out.methodReason = p.methodReason;
   const Bounds bounds = scene.bounds();
   const glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : 0.5f * (bounds.min + bounds.max);
   const float sweep = glm::radians(request.orbitDegrees);

@@ -34,6 +34,8 @@ struct PlaybackOutcome {
   bool defaultRig = false;  // no lights: the default rig, fixed to the first frame's camera
   std::size_t lightCount = 0;
   double bakeMs = 0.0;
+  Method method = Method::Reference;  // the method used (auto's choice for Method::Auto)
+  std::string methodReason;           // with Method::Auto: why
   std::vector<double> renderMs;         // per frame
   std::vector<double> cutMs;            // per frame: of renderMs, lightcuts' shared cuts on the CPU
   std::vector<int> cutsMade, cutsKept;  // per frame: shared cuts found, and kept

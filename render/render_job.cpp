@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <map>
 
+#include "render/method_choice.h"
+
 namespace manylight {
 
 Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* framed) {
@@ -44,11 +46,24 @@ PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
   const std::vector<Light>& lights = defaultRig ? rig : scene.lights;
   lightCount = lights.size();
   // An AOV runs no lighting pass, so the reference method, which builds nothing, serves it.
-  const Method method = request.aov == Aov::None ? request.method : Method::Reference;
+  method = request.aov == Aov::None ? request.method : Method::Reference;
   BakedLights baked;
   if (!defaultRig) baked = {request.prebuiltTrees, request.prebuiltOctree};
+  MethodChoice choice;
+  if (method == Method::Auto) {
+    const auto start = std::chrono::steady_clock::now();
+    choice = chooseMethod(scene, lights, request.width, request.height, request.octree,
+                          baked.octree);
+    method = choice.method;
+    methodReason = choice.reason;
+    if (choice.octree) baked.octree = choice.octree.get();
+    bakeMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                  .count();
+  }
+  double prepareMs = 0.0;
   renderer = prepareRenderer(scene, lights, request.width, request.height, method,
-                             {request.lightcuts.trees, request.octree}, baked, &bakeMs);
+                             {request.lightcuts.trees, request.octree}, baked, &prepareMs);
+  bakeMs += prepareMs;
   settings.octreeStats = request.octreeStats;
   settings.aov = request.aov;
   settings.ambient = defaultRig && request.rigAmbient ? glm::vec3(kRigAmbient) : request.ambient;
@@ -63,6 +78,8 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
   out.defaultRig = p.defaultRig;
   out.lightCount = p.lightCount;
   out.bakeMs = p.bakeMs;
+  out.method = p.method;
+  out.methodReason = p.methodReason;
   if (p.renderer->lightcuts()) out.nodeColour = p.renderer->lightcuts()->nodeColour();
   if (p.renderer->octree()) out.octree = summarise(p.renderer->octree()->octree());
   out.image =
@@ -72,19 +89,6 @@ RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {
 
 double referenceSecondsEstimate(std::size_t lights, int width, int height) {
   return double(lights) * width * height / kReferenceEvaluationsPerSecond;
-}
-
-std::string slowReferenceNote(const std::string& scene, std::size_t lights, int width, int height) {
-  if (lights < kLightcutsFasterLights ||
-      double(lights) * width * height <= kSlowReferenceEvaluations)
-    return {};
-  return scene + ": " + std::to_string(lights) + " lights × " + std::to_string(width) + "×" +
-         std::to_string(height) +
-         " pixels with the reference method (every light at every pixel) will take up to "
-         "about " +
-         std::to_string(std::llround(referenceSecondsEstimate(lights, width, height))) +
-         " s at llvmpipe's 400 M light evaluations a second; --method lightcuts takes 0.4–2 s "
-         "for 65,536 to 1,048,576 lights at 640×480 there";
 }
 
 std::vector<Thumbnail> planThumbnails(const std::vector<std::string>& scenes,

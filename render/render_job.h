@@ -40,6 +40,8 @@ struct RenderOutcome {
   double bakeMs = 0.0;         // light trees built and uploaded (lightcuts methods)
   NodeColourCoder nodeColour;  // lightcuts methods: how node colours were coded, and the error
   OctreeSummary octree;        // the octree method: its octree's figures
+  Method method = Method::Reference;  // the method used (auto's choice for Method::Auto)
+  std::string methodReason;           // with Method::Auto: why
 };
 
 // The camera a request resolves to. Throws Error ("SCENE: camera N does not exist ...") for a
@@ -67,6 +69,8 @@ struct PreparedRender {
   std::size_t lightCount = 0;
   // Milliseconds spent baking (when no baked trees were given) and uploading the light trees.
   double bakeMs = 0.0;
+  Method method = Method::Reference;  // the method used: request.method, or auto's choice
+  std::string methodReason;           // with Method::Auto: why it chose that
   std::unique_ptr<Renderer> renderer;
   FrameSettings settings;
 };
@@ -74,23 +78,9 @@ struct PreparedRender {
 // Light evaluations a second of the reference method on llvmpipe with 2 cores: the
 // reference throughput of docs/performance.md, rounded.
 inline constexpr double kReferenceEvaluationsPerSecond = 4e8;
-// Light evaluations of a reference frame past which `render` says that lightcuts would be
-// faster, when the reference was its default and not asked for: 2^32, about 11 s at
-// kReferenceEvaluationsPerSecond.
-inline constexpr double kSlowReferenceEvaluations = 4294967296.0;
-// Lights from which lightcuts is faster than the reference (docs/performance.md, the sweep:
-// at 64 lights the two are close, at 1,024 lightcuts is faster in every layout).
-inline constexpr std::size_t kLightcutsFasterLights = 1024;
-
 // Seconds a reference frame of `lights` over width × height takes at
 // kReferenceEvaluationsPerSecond when every pixel is covered (background pixels cost nothing).
 double referenceSecondsEstimate(std::size_t lights, int width, int height);
-
-// Empty when a reference frame of `lights` over width × height is at most
-// kSlowReferenceEvaluations light evaluations, or lights are fewer than
-// kLightcutsFasterLights; otherwise one line, "SCENE: N lights × W×H pixels with the
-// reference method ... will take up to about T s ...; --method lightcuts takes ...".
-std::string slowReferenceNote(const std::string& scene, std::size_t lights, int width, int height);
 
 // Renders with the current context. Throws Error (bad request) or gl::GlError.
 RenderOutcome renderScene(const Scene& scene, const RenderRequest& request);

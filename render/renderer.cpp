@@ -18,8 +18,9 @@ Method parseMethod(const std::string& name) {
   if (name == "lightcuts") return Method::Lightcuts;
   if (name == "lightcuts-distance") return Method::LightcutsDistance;
   if (name == "octree") return Method::Octree;
+  if (name == "auto") return Method::Auto;
   throw Error("unknown method '" + name +
-              "', expected reference, lightcuts, lightcuts-distance or octree");
+              "', expected reference, lightcuts, lightcuts-distance, octree or auto");
 }
 
 const char* methodName(Method m) {
@@ -30,6 +31,8 @@ const char* methodName(Method m) {
       return "lightcuts-distance";
     case Method::Octree:
       return "octree";
+    case Method::Auto:
+      return "auto";
     default:
       return "reference";
   }
@@ -38,6 +41,7 @@ const char* methodName(Method m) {
 Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int width, int height,
                    Method method, BakedLights baked)
     : scene_(scene), gpu_(scene, lights), gbuffer_(width, height) {
+  if (method == Method::Auto) throw Error("auto is resolved before a renderer is made");
   if (method != Method::Reference) {
     glFinish();
     const auto start = std::chrono::steady_clock::now();

@@ -20,10 +20,11 @@
 
 namespace manylight {
 
-enum class Method { Reference, Lightcuts, LightcutsDistance, Octree };
+// Auto is a request only (render/method_choice.h resolves it); a Renderer takes the others.
+enum class Method { Reference, Lightcuts, LightcutsDistance, Octree, Auto };
 
-// "reference", "lightcuts", "lightcuts-distance", "octree" → Method; throws Error naming the
-// choices for anything else.
+// "reference", "lightcuts", "lightcuts-distance", "octree", "auto" → Method; throws Error
+// naming the choices for anything else.
 Method parseMethod(const std::string& name);
 const char* methodName(Method m);
 

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/method_choice.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
 #include "tests/cli_support.h"
@@ -221,19 +222,29 @@ TEST(Bench, ReferenceEstimateFollowsTheMeasuredThroughput) {
   EXPECT_EQ(referenceSecondsEstimate(0, 640, 480), 0.0);
 }
 
-TEST(Bench, ReferenceEstimateNotesOnlyManyLightsOverManyPixels) {
-  // 2^32 light evaluations: 13,981 lights at 640×480 are under it, 13,982 over.
-  EXPECT_EQ(slowReferenceNote("a.glb", 13981, 640, 480), "");
-  EXPECT_EQ(slowReferenceNote("a.glb", 13982, 640, 480),
-            "a.glb: 13982 lights × 640×480 pixels with the reference method (every light at "
-            "every pixel) will take up to about 11 s at llvmpipe's 400 M light evaluations a "
-            "second; --method lightcuts takes 0.4–2 s for 65,536 to 1,048,576 lights at 640×480 "
-            "there");
-  EXPECT_NE(slowReferenceNote("big.gltf", 1048576, 640, 480).find("about 805 s"),
-            std::string::npos);
-  // Below 1,024 lights the reference is the faster method, however large the image.
-  EXPECT_EQ(slowReferenceNote("a.glb", 1023, 65536, 65536), "");
-  EXPECT_NE(slowReferenceNote("a.glb", 1024, 4096, 4096), "");
+TEST(Bench, AutoChoosesByTheCostModel) {
+  Scene scene;  // no geometry: the octree covers the lights' supports
+  // 1,000 lights × 256×256 = 6.6e7 light evaluations: the reference.
+  std::vector<Light> few(1000);
+  MethodChoice c = chooseMethod(scene, few, 256, 256, {});
+  EXPECT_EQ(c.method, Method::Reference);
+  EXPECT_EQ(c.reason, "1000 lights × 256×256 pixels: the reference is exact and takes up to about 0.16 s");
+  // 65,536 lights without a range at 640×480: lightcuts.
+  std::vector<Light> unranged(65536);
+  c = chooseMethod(scene, unranged, 640, 480, {});
+  EXPECT_EQ(c.method, Method::Lightcuts);
+  EXPECT_EQ(c.reason,
+            "65536 lights, 65536 without a range: the octree would evaluate those at every "
+            "pixel; the reference would take up to about 50 s, so lightcuts (approximate, "
+            "within its documented error at --error)");
+  EXPECT_FALSE(c.octree);
+  // The same with short ranges: the octree, and the octree it built to decide.
+  const std::vector<Light> ranged = layoutLights(LightLayout::UniformRanged, 65536, 7);
+  c = chooseMethod(scene, ranged, 640, 480, {});
+  EXPECT_EQ(c.method, Method::Octree) << c.reason;
+  ASSERT_TRUE(c.octree);
+  EXPECT_EQ(c.reason.find("65536 lights: the octree is exact and its lists hold about "), 0u)
+      << c.reason;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "gl/limits.h"
 #include "render/render_job.h"
@@ -176,25 +177,30 @@ std::string lightList(int count) {
   return writeText("lights.csv", csv.str());
 }
 
-TEST(CliOptions, ADefaultReferenceRenderOfManyLightsSaysHowLongItTakes) {
-  // 65,536 lights × 320×240 pixels = 5.0e9 light evaluations, past the 2^32 of the note.
+TEST(CliOptions, TheDefaultMethodIsChosenPerSceneAndSaysWhy) {
+  // 65,536 lights without a range × 320×240 pixels = 5.0e9 light evaluations: lightcuts.
   const std::string scene = lookingAway();
   const std::string out = (testFolder() / "x.png").string();
-  const std::string render =
-      "render " + scene + " --lights " + lightList(65536) + " -o " + out + " --size 320x240";
-  const ProcessResult bare = manylight(render);
+  const std::string stats = (testFolder() / "x.json").string();
+  const std::string render = "render " + scene + " --lights " + lightList(65536) + " -o " + out +
+                             " --size 320x240 --stats " + stats;
+  const ProcessResult bare = manylight(render + " --verbose");
   ASSERT_EQ(bare.exitCode, 0) << bare.err;
-  EXPECT_EQ(bare.err, "manylight: " + slowReferenceNote(scene, 65536, 320, 240) + "\n");
-  EXPECT_NE(bare.err.find(": 65536 lights × 320×240 pixels with the reference method (every "
-                          "light at every pixel) will take up to about 13 s"),
+  EXPECT_NE(bare.err.find("manylight: " + scene +
+                          ": auto: lightcuts: 65536 lights, 65536 without a range: the octree "
+                          "would evaluate those at every pixel; the reference would take up to "
+                          "about 13 s, so lightcuts"),
             std::string::npos)
       << bare.err;
-  // Asked for by name, or with no lighting pass: nothing to say.
-  for (const char* args : {" --method reference", " --aov normal"}) {
-    const ProcessResult r = manylight(render + args);
-    EXPECT_EQ(r.exitCode, 0) << args << ": " << r.err;
-    EXPECT_EQ(r.err, "") << args;
-  }
+  const nlohmann::json s = nlohmann::json::parse(readFile(stats));
+  EXPECT_EQ(s["method"], "lightcuts");
+  EXPECT_NE(s["method_reason"].get<std::string>().find("65536 lights, 65536 without a range"),
+            std::string::npos);
+  // Asked for by name: nothing to say, no reason in the stats.
+  const ProcessResult named = manylight(render + " --method reference --size 32x24");
+  EXPECT_EQ(named.exitCode, 0) << named.err;
+  EXPECT_EQ(named.err, "");
+  EXPECT_FALSE(nlohmann::json::parse(readFile(stats)).contains("method_reason"));
 }
 
 }  // namespace
