@@ -37,6 +37,7 @@ void OctreeMethod::replace(const LinklessOctree& octree, const std::vector<Light
   for (int index : octree_.order) lights_.push_back(lights[std::size_t(index)]);
   lightTexture_ = upload(packLightTexels(lights, octree_.order), 4, GL_RGBA32F, "octree lights");
   nodes_ = upload(octree_.nodes, 2, GL_RG32UI, "light octree nodes");
+  offsets_ = upload(octree_.offsets, 4, GL_RGBA16UI, "light octree hash offsets");
   indices_ = upload(octree_.indices, 1, GL_R32UI, "light octree lists");
 }
 

@@ -33,8 +33,8 @@ class OctreeMethod {
   // when the driver cannot hold it.
   OctreeMethod(LinklessOctree octree, const std::vector<Light>& lights);
 
-  // Uploads `octree`'s node texels and lists in place of the current ones: the same octree
-  // with its lights moved to `lights` (bake/octree_update.h), so its hash offsets stay.
+  // Uploads `octree` for `lights` in place of the current one: the same octree with its
+  // lights moved (bake/octree_update.h), or one built anew.
   void replace(const LinklessOctree& octree, const std::vector<Light>& lights);
 
   // Adds the lights' contribution to the radiance target of `gbuffer`, in passes of at most

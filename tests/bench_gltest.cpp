@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generators/light_layouts.h"
 #include "render/method_choice.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
@@ -169,8 +170,8 @@ TEST(Bench, CliBenchRefusesBadRequestsInOneLine) {
        "manylight: uniform-2000000: 2000000 lights exceed the light budget of 1048576\n", 1},
       {"bench --counts 12,x" + out, "manylight: --counts: 'x' is not a number in 1..67108864\n", 2},
       {"bench --methods reference,hashed" + out,
-       "manylight: unknown method 'hashed', expected reference, lightcuts, lightcuts-distance "
-       "or octree\n",
+       "manylight: unknown method 'hashed', expected reference, lightcuts, lightcuts-distance, "
+       "octree or auto\n",
        1},
       {"bench --suite stability --cases count-4" + out, "", 2},
   };
@@ -223,7 +224,9 @@ TEST(Bench, ReferenceEstimateFollowsTheMeasuredThroughput) {
 }
 
 TEST(Bench, AutoChoosesByTheCostModel) {
-  Scene scene;  // no geometry: the octree covers the lights' supports
+  RoomOptions o;
+  o.lightCount = 1;
+  const Scene scene = loadGltf(roomScene(o, "auto-room.gltf"));
   // 1,000 lights × 256×256 = 6.6e7 light evaluations: the reference.
   std::vector<Light> few(1000);
   MethodChoice c = chooseMethod(scene, few, 256, 256, {});

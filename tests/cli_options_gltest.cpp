@@ -182,9 +182,9 @@ TEST(CliOptions, TheDefaultMethodIsChosenPerSceneAndSaysWhy) {
   const std::string scene = lookingAway();
   const std::string out = (testFolder() / "x.png").string();
   const std::string stats = (testFolder() / "x.json").string();
-  const std::string render = "render " + scene + " --lights " + lightList(65536) + " -o " + out +
-                             " --size 320x240 --stats " + stats;
-  const ProcessResult bare = manylight(render + " --verbose");
+  const std::string render =
+      "render " + scene + " --lights " + lightList(65536) + " -o " + out + " --stats " + stats;
+  const ProcessResult bare = manylight(render + " --size 320x240 --verbose");
   ASSERT_EQ(bare.exitCode, 0) << bare.err;
   EXPECT_NE(bare.err.find("manylight: " + scene +
                           ": auto: lightcuts: 65536 lights, 65536 without a range: the octree "

@@ -267,13 +267,14 @@ TEST(CliTools, PlaybackOrbitsTheCameraFrameByFrame) {
   const std::string frames = (dir / "frames" / "f%03d.png").string();
   ProcessResult r =
       manylight("play " + scene + " -o " + frames +
-                " --frames 4 --orbit 20 --size 48x32 --tone-map none --exposure 0 --stats " +
+                " --frames 4 --orbit 20 --size 48x32 --tone-map none --exposure 0 --method lightcuts"
+                " --stats " +
                 (dir / "play.json").string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto stats = nlohmann::json::parse(readFile(dir / "play.json"));
   EXPECT_EQ(stats["frames"], 4);
   EXPECT_EQ(stats["frame_render_ms"].size(), 4u);
-  ASSERT_EQ(stats["frame_cut_ms"].size(), 4u);  // lightcuts, the default, with shared cuts
+  ASSERT_EQ(stats["frame_cut_ms"].size(), 4u);  // lightcuts with shared cuts
   for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_GT(stats["frame_cut_ms"][i].get<double>(), 0.0);
     EXPECT_LT(stats["frame_cut_ms"][i].get<double>(), stats["frame_render_ms"][i].get<double>());
@@ -297,7 +298,7 @@ TEST(CliTools, PlaybackOrbitsTheCameraFrameByFrame) {
   const std::string fresh = (dir / "fresh" / "f%03d.png").string();
   ASSERT_EQ(manylight("play " + scene + " -o " + fresh +
                       " --frames 4 --orbit 20 --size 48x32 --fresh-cuts --tone-map none "
-                      "--exposure 0")
+                      "--exposure 0 --method lightcuts")
                 .exitCode,
             0);
   EXPECT_EQ(readFile(dir / "fresh" / "f000.png"), readFile(still));
@@ -312,7 +313,8 @@ TEST(CliTools, PlaybackOrbitsTheCameraFrameByFrame) {
   // Raw frames on stdout: 4 × 48 × 32 RGBA8, the first equal to the PNG's codes.
   const fs::path raw = dir / "frames.rgba";
   ASSERT_EQ(shell(std::string(MANYLIGHT_BIN) + " play " + scene +
-                  " -o - --frames 4 --orbit 20 --size 48x32 --tone-map none --exposure 0 > " +
+                  " -o - --frames 4 --orbit 20 --size 48x32 --tone-map none --exposure 0 "
+                  "--method lightcuts > " +
                   raw.string()),
             0);
   const std::string bytes = readFile(raw);

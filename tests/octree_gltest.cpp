@@ -5,10 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <glm/gtc/constants.hpp>
 #include <iostream>
 #include <random>
 
 #include "generators/light_layouts.h"
+#include "render/playback.h"
+#include "scene/camera_animation.h"
 #include "render/render_job.h"
 #include "scene/gltf_loader.h"
 #include "tests/gl_support.h"
@@ -160,6 +164,88 @@ TEST(Octree, ListsLongerThanAPassContinueInFurtherPasses) {
   const OctreeRun r = run(overlapping(20000), 3000);
   expectExact(r);
   EXPECT_EQ(r.passes, 7);
+}
+
+// Moved lights (Renderer::moveLights, the octree updated in place) against the reference of
+// the same lights, frame after frame.
+TEST(Octree, MovedLightsStayExact) {
+  Scene scene = room();
+  scene.lights = layoutLights(LightLayout::UniformRanged, 4096, 7);
+  RenderRequest request;
+  request.width = kWidth;
+  request.height = kHeight;
+  request.method = Method::Octree;
+  PreparedRender p(scene, request);
+  const View view = makeView(p.camera, kWidth, kHeight);
+  std::vector<Light> lights = scene.lights;
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> pick(0, int(lights.size()) - 1);
+  std::uniform_real_distribution<float> step(-0.5f, 0.5f);
+  for (int frame = 0; frame < 3; ++frame) {
+    std::vector<int> changed;
+    for (int k = 0; k < 400; ++k) changed.push_back(pick(rng));
+    std::sort(changed.begin(), changed.end());
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    for (int i : changed) lights[std::size_t(i)].position += glm::vec3(step(rng), step(rng), step(rng));
+    p.renderer->moveLights(lights, changed, {});
+    const Image image = p.renderer->render(view, p.settings);
+    Scene moved = room();
+    moved.lights = lights;
+    RenderRequest reference = request;
+    reference.method = Method::Reference;
+    const Comparison c = compare(image, renderScene(moved, reference).image);
+    EXPECT_EQ(c.failing, 0) << "frame " << frame << ", worst " << c.worst;
+    EXPECT_EQ(p.renderer->octree()->frameStats(p.renderer->gbuffer(), true).missed, 0);
+  }
+}
+
+// The shared AnimateAllTheThings asset plays its light animation: each frame as the
+// reference renders the lights sampled at its time.
+TEST(Octree, AnimateAllTheThingsPlaysItsLightAnimation) {
+  const std::filesystem::path file =
+      std::filesystem::path(MANYLIGHT_SHARED_SCENES) / "AnimateAllTheThings/24_animation_pointer.gltf";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file << " (the shared scenes are absent)";
+  context();
+  const Scene scene = loadGltf(file.string());
+  ASSERT_TRUE(scene.lightAnimation.animated());
+  PlaybackRequest play;
+  play.frame.width = kWidth;
+  play.frame.height = kHeight;
+  play.frame.method = Method::Octree;
+  play.frames = 4;
+  play.fps = 0.4f;  // frames at 0, 2.5, 5 and 7.5 s
+  std::vector<Image> frames;
+  const PlaybackOutcome out = manylight::play(scene, play, [&](int, const Image& image, const FrameStats&) {
+    frames.push_back(image);
+    return true;
+  });
+  EXPECT_TRUE(out.lightsAnimated);
+  ASSERT_EQ(frames.size(), 4u);
+  std::vector<Light> lights;
+  int differing = 0;
+  for (int i = 0; i < 4; ++i) {
+    scene.lightAnimation.sampleLights(scene, float(i) / play.fps, lights);
+    Scene at = scene;
+    at.lights = lights;
+    RenderRequest reference = play.frame;
+    reference.method = Method::Reference;
+    // The orbit the playback used for this frame: its camera.
+    const Image expected = [&] {
+      PreparedRender p(at, reference);
+      Camera camera = p.camera;
+      if (camera.animation.chain.empty()) {
+        camera = orbitCamera(p.camera, 0.5f * (at.bounds().min + at.bounds().max),
+                             glm::radians(play.orbitDegrees) * float(i) / 4.0f);
+      } else {
+        camera.world = animatedCameraWorld(p.camera, float(i) / play.fps);
+      }
+      return p.renderer->render(makeView(camera, kWidth, kHeight), p.settings);
+    }();
+    const Comparison c = compare(frames[std::size_t(i)], expected);
+    EXPECT_EQ(c.failing, 0) << "frame " << i << ", worst " << c.worst;
+    if (i > 0) differing += compare(frames[std::size_t(i)], frames[0]).failing > 0;
+  }
+  EXPECT_GT(differing, 0) << "the lights' animation changed nothing";
 }
 
 }  // namespace
