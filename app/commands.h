@@ -163,9 +163,9 @@ int runCompare(const CompareArgs& a);
 
 struct BenchArgs {
   std::string suite = "sweep", csv, json, scene, size, backend = "auto", cases;
-  std::string layouts = "uniform,clustered,street,mixed";
+  std::string layouts = "uniform,clustered,street,mixed,uniform-ranged,street-ranged";
   std::string counts = "64,1024,16384,65536,262144,1048576";
-  std::string methods = "reference,lightcuts,lightcuts-distance", modes = "node,total";
+  std::string methods = "reference,lightcuts,lightcuts-distance,octree", modes = "node,total";
   std::string errors;  // empty: the suite's (sweep 0.005,0.01,0.02,0.05,0.1; stability 0.02)
   int repeats = 3, frames = 60, maxCut = LightcutsSettings{}.maxCut;
   double referenceSeconds = 60.0;

@@ -3,7 +3,7 @@
 # speed/accuracy sweep and the stability suite (`manylight bench`), the peers when f3d is
 # installed (bench/peers.sh), then the charts and pages (bench/report.py, gnuplot).
 # Run from the repository root after the build (README.md, the first command):
-#   bench/sweep.sh            the full sweep: 640x480, 4 layouts x 6 counts up to 1,048,576,
+#   bench/sweep.sh            the full sweep: 640x480, 6 layouts x 6 counts up to 1,048,576,
 #                             every method, ε and mode (hours on a 2-core machine; see
 #                             docs/performance.md): what docs/ shows
 #   bench/sweep.sh --quick    the same at 320x240
