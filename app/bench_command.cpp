@@ -260,9 +260,10 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   bench->add_option("--cases", a.cases,
                     "stability: run only these cases (names as in docs/stability.md)");
   bench->add_option("--counts", a.counts, "sweep: light counts")->capture_default_str();
-  bench->add_option("--methods", a.methods,
-                    "reference, lightcuts, lightcuts-distance, octree (timed where most lights "
-                    "have a range)")
+  bench
+      ->add_option("--methods", a.methods,
+                   "reference, lightcuts, lightcuts-distance, octree (timed where most lights "
+                   "have a range)")
       ->capture_default_str();
   bench->add_option("--modes", a.modes, "lightcuts error modes: node, total")
       ->capture_default_str();
@@ -311,7 +312,8 @@ int runBench(const BenchArgs& a) {
   for (const std::string& m : splitList(a.methods)) {
     methods.push_back(parseMethod(m));
     if (methods.back() == Method::Auto)
-      throw CLI::ValidationError("--methods", "auto chooses a method per scene; name the methods to time");
+      throw CLI::ValidationError("--methods",
+                                 "auto chooses a method per scene; name the methods to time");
   }
   std::vector<ErrorMode> modes;
   for (const std::string& m : splitList(a.modes)) {

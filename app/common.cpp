@@ -153,7 +153,8 @@ void addMethodOptions(CLI::App* app, MethodArgs& a) {
              "octree (exact: each pixel's lights from a hashed light octree), auto (the "
              "fastest of them for the scene; --verbose says which and why)")
           ->capture_default_str()
-          ->check(CLI::IsMember({"reference", "lightcuts", "lightcuts-distance", "octree", "auto"}));
+          ->check(
+              CLI::IsMember({"reference", "lightcuts", "lightcuts-distance", "octree", "auto"}));
   app->add_option("--error", a.error, "lightcuts: relative error ε of the stopping rule")
       ->capture_default_str()
       ->check(CLI::Range(1e-6f, 1.0f));

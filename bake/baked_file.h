@@ -12,8 +12,8 @@
 
 #include "bake/light_octree.h"
 #include "bake/light_tree.h"
-#include "bake/linkless_octree.h"
 #include "bake/light_tree_pack.h"
+#include "bake/linkless_octree.h"
 #include "scene/scene.h"
 
 namespace manylight {

@@ -66,8 +66,8 @@ void checkLists(Reader& r, const LinklessOctree& o, std::size_t lights) {
     seen[std::size_t(index)] = 1;
   }
   for (std::uint32_t index : o.indices) {
-    if (index >= lights) r.fail("a list names light " + std::to_string(index) + " of " +
-                                std::to_string(lights));
+    if (index >= lights)
+      r.fail("a list names light " + std::to_string(index) + " of " + std::to_string(lights));
   }
   for (int index : o.wholeScene) {
     if (index < 0 || std::size_t(index) >= lights) r.fail("a whole-scene light does not exist");

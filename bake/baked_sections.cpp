@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "bake/baked_animation.h"
 #include "bake/baked_octree.h"
 #include "bake/light_tree_layout.h"
 #include "scene/camera_animation.h"
@@ -100,22 +101,14 @@ std::string section(std::uint32_t which, const BakedScene& b) {
       w.put(c.yfov), w.put(c.xmag), w.put(c.ymag), w.put(c.znear), w.put(c.zfar);
       putFloats(w, c.world);
       w.put(c.animation.duration);
-      w.put(std::uint32_t(c.animation.chain.size()));
-      for (const AnimatedNode& n : c.animation.chain) {
-        w.put(std::uint8_t(n.hasMatrix));
-        putFloats(w, n.matrix), putFloats(w, n.translation), putFloats(w, n.rotation),
-            putFloats(w, n.scale);
-        w.put(std::uint32_t(n.tracks.size()));
-        for (const AnimationTrack& t : n.tracks) {
-          w.put(std::uint8_t(t.path)), w.put(std::uint8_t(t.interpolation));
-          w.array(t.times), w.array(t.values);
-        }
-      }
+      writeChain(w, c.animation.chain);
     }
   } else if (which == kTrees) {
     writeTrees(w, b);
   } else if (which == kOctree) {
     writeOctree(w, b.octree);
+  } else if (which == kLightAnimation) {
+    writeLightAnimation(w, s.lightAnimation);
   }
   return std::move(w.bytes());
 }
@@ -273,27 +266,7 @@ void readCameras(Reader& r, Scene& s) {
     c.zfar = getFinite<float>(r, "zfar");
     c.world = getFinite<glm::mat4>(r, "a camera transform");
     c.animation.duration = getFinite<float>(r, "an animation duration");
-    c.animation.chain.resize(r.count(1024, "animated nodes"));
-    for (AnimatedNode& n : c.animation.chain) {
-      n.hasMatrix = r.get<std::uint8_t>() != 0;
-      n.matrix = getFinite<glm::mat4>(r, "a node matrix");
-      n.translation = getFinite<glm::vec3>(r, "a node translation");
-      n.rotation = getFinite<glm::vec4>(r, "a node rotation");
-      n.scale = getFinite<glm::vec3>(r, "a node scale");
-      n.tracks.resize(r.count(16, "animation tracks"));
-      for (AnimationTrack& t : n.tracks) {
-        const auto path = r.get<std::uint8_t>(), interpolation = r.get<std::uint8_t>();
-        if (path > 2 || interpolation > 2) r.fail("unknown animation path or interpolation");
-        t.path = AnimationTrack::Path(path);
-        t.interpolation = AnimationTrack::Interpolation(interpolation);
-        t.times = r.array<float>();
-        t.values = r.array<float>();
-        const std::string problem = checkTrack(t);
-        if (!problem.empty()) r.fail("animation track: " + problem);
-        if (t.times.back() > c.animation.duration)
-          r.fail("animation track: keys past the duration");
-      }
-    }
+    c.animation.chain = readChain(r, c.animation.duration);
   }
 }
 
@@ -364,6 +337,7 @@ std::vector<std::pair<std::uint32_t, std::string>> writeSections(const BakedScen
                                      kInstances, kLights,    kCameras};
   if (baked.hasTrees) tags.push_back(kTrees);
   if (baked.hasOctree) tags.push_back(kOctree);
+  if (baked.scene.lightAnimation.animated()) tags.push_back(kLightAnimation);
   std::vector<std::pair<std::uint32_t, std::string>> out;
   for (std::uint32_t t : tags) out.emplace_back(t, section(t, baked));
   return out;
@@ -391,9 +365,14 @@ BakedScene readSections(const std::map<std::uint32_t, std::string_view>& section
     throw BakeError(path + ": the light trees and the lights do not agree");
   }
   if (b.hasTrees) read(kTrees, "light trees", [&](Reader& r) { readTrees(r, b); });
+  if (sections.count(kLightAnimation)) {
+    read(kLightAnimation, "light animation",
+         [&](Reader& r) { scene.lightAnimation = readLightAnimation(r, scene.lights.size()); });
+  }
   b.hasOctree = sections.count(kOctree) > 0;
   if (b.hasOctree) {
-    read(kOctree, "light octree", [&](Reader& r) { b.octree = readOctree(r, scene.lights.size()); });
+    read(kOctree, "light octree",
+         [&](Reader& r) { b.octree = readOctree(r, scene.lights.size()); });
   }
   return b;
 }

@@ -18,13 +18,13 @@ namespace {
 constexpr std::size_t kParallelList = 1 << 16;
 
 using octree::Box;
-using octree::Support;
+using octree::coneMeetsBox;
 using octree::contains;
 using octree::grow;
 using octree::overlaps;
 using octree::sphereBox;
+using octree::Support;
 using octree::supportOf;
-using octree::coneMeetsBox;
 
 Box cellBox(const LightOctree& o, int level, glm::uvec3 cell) {
   const float edge = o.leafEdge * float(1u << (o.levels - 1 - level));
@@ -39,15 +39,19 @@ struct Part {
 };
 
 struct Build {
-  Build(const LightOctree& o, const std::vector<Support>& s, float m,
-        std::atomic<std::size_t>& e, std::atomic<bool>& f)
-      : octree(o), supports(s), margin(m), entries(e), overflow(f),
+  Build(const LightOctree& o, const std::vector<Support>& s, float m, std::atomic<std::size_t>& e,
+        std::atomic<bool>& f)
+      : octree(o),
+        supports(s),
+        margin(m),
+        entries(e),
+        overflow(f),
         children(std::size_t(o.levels) + 1) {}
   const LightOctree& octree;
-  const std::vector<Support>& supports;  // per light texture slot
+  const std::vector<Support>& supports;    // per light texture slot
   const SurfaceCells* surfaces = nullptr;  // null: refine everywhere
   float margin;
-  std::atomic<std::size_t>& entries;     // list entries written so far, all parts
+  std::atomic<std::size_t>& entries;  // list entries written so far, all parts
   std::atomic<bool>& overflow;
   std::size_t budget = kMaxOctreeIndices;  // list entries at most
   bool keepEmpty = false;                  // OctreeOptions::dynamic
@@ -130,7 +134,8 @@ struct Build {
     } else {
       // The top nodes' lists hold most lights: split them in chunks on every thread, joined
       // in order so each child's list stays sorted.
-      std::vector<std::array<std::vector<std::uint32_t>, 8>> parts(static_cast<std::size_t>(threads));
+      std::vector<std::array<std::vector<std::uint32_t>, 8>> parts(
+          static_cast<std::size_t>(threads));
       std::vector<std::thread> pool;
       const std::size_t chunk = (list.size() + std::size_t(threads) - 1) / std::size_t(threads);
       for (int t = 0; t < threads; ++t) {
@@ -142,7 +147,8 @@ struct Build {
       }
       for (std::thread& th : pool) th.join();
       for (int c = 0; c < 8; ++c) {
-        for (const auto& part : parts) lists[c].insert(lists[c].end(), part[c].begin(), part[c].end());
+        for (const auto& part : parts)
+          lists[c].insert(lists[c].end(), part[c].begin(), part[c].end());
       }
     }
     for (int c = 0; c < 8; ++c) {
@@ -199,7 +205,8 @@ void buildTasks(Build& top, Part& main, int threads) {
   for (std::size_t t = 0; t < parts.size(); ++t) {
     const std::uint32_t indexBase = std::uint32_t(main.indices.size());
     std::vector<std::uint32_t> base(std::size_t(levels) + 1, 0);
-    for (int level = 0; level < levels; ++level) base[level] = std::uint32_t(main.nodes[level].size());
+    for (int level = 0; level < levels; ++level)
+      base[level] = std::uint32_t(main.nodes[level].size());
     for (int level = top.taskLevel; level < levels; ++level) {
       for (OctreeNode n : parts[t].nodes[level]) {
         if (n.leaf) {
@@ -221,8 +228,8 @@ void buildTasks(Build& top, Part& main, int threads) {
 // Sorts the ranged lights into the octree's, the global list and the unreached, and sets
 // the octree's domain: the geometry bounds met by the supports. Returns the margin.
 float classify(const std::vector<Light>& lights, const LightOrder& order, const Bounds& geometry,
-               bool dynamic, std::vector<Support>& supports,
-               std::vector<std::uint32_t>& inOctree, LightOctree& o, Box& domain) {
+               bool dynamic, std::vector<Support>& supports, std::vector<std::uint32_t>& inOctree,
+               LightOctree& o, Box& domain) {
   Box scene{glm::vec3(0.0f), glm::vec3(0.0f)};
   bool first = true;
   for (std::size_t slot = 0; slot < order.scene.size(); ++slot) {
@@ -237,8 +244,8 @@ float classify(const std::vector<Light>& lights, const LightOrder& order, const 
     first = false;
   }
   if (!geometry.empty) scene = {geometry.min, geometry.max};
-  const float scale = std::max({glm::length(scene.lo), glm::length(scene.hi),
-                                glm::length(scene.hi - scene.lo), 1e-3f});
+  const float scale = std::max(
+      {glm::length(scene.lo), glm::length(scene.hi), glm::length(scene.hi - scene.lo), 1e-3f});
   const float margin = 1e-5f * scale;
   bool any = false;
   domain = scene;
@@ -306,7 +313,8 @@ std::vector<int> octreeOrder(const std::vector<Light>& lights) {
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const Light& l = lights[i];
     if (l.type == LightType::Directional || !(l.range > 0.0f)) continue;
-    const glm::vec3 q = glm::clamp((l.position - box.min) * scale, glm::vec3(0.0f), glm::vec3(2097151.0f));
+    const glm::vec3 q =
+        glm::clamp((l.position - box.min) * scale, glm::vec3(0.0f), glm::vec3(2097151.0f));
     coded.push_back({spread(std::uint64_t(q.x)) | spread(std::uint64_t(q.y)) << 1 |
                          spread(std::uint64_t(q.z)) << 2,
                      int(i)});
@@ -353,9 +361,8 @@ LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scen
   o.margin = margin;
   float leafEdge = options.leafEdge > 0.0f ? options.leafEdge : octreeLeafEdge(ranged);
   if (!(leafEdge > 0.0f)) leafEdge = 1.0f;
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : std::max(1, int(std::thread::hardware_concurrency()));
+  const int threads =
+      options.threads > 0 ? options.threads : std::max(1, int(std::thread::hardware_concurrency()));
   for (;; leafEdge *= 2.0f) {
     shape(o, domain, margin, leafEdge);
     std::atomic<std::size_t> entries{0};
@@ -399,8 +406,8 @@ LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scen
 OctreeList octreeListAt(const LightOctree& o, glm::vec3 p) {
   const int deepest = o.levels - 1;
   const float cells = float(1u << deepest);
-  const glm::vec3 q = glm::clamp(glm::floor((p - o.origin) / o.leafEdge), glm::vec3(0.0f),
-                                 glm::vec3(cells - 1.0f));
+  const glm::vec3 q =
+      glm::clamp(glm::floor((p - o.origin) / o.leafEdge), glm::vec3(0.0f), glm::vec3(cells - 1.0f));
   const glm::uvec3 cell(q);
   std::size_t index = 0;
   for (int level = 0;; ++level) {

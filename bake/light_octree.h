@@ -12,11 +12,11 @@
 // whose support misses the scene's geometry reach no pixel and are left out.
 //
 // Construction is top-down, and only in the cells the scene's geometry touches (the only
-// places a fragment can be; elsewhere nodes are absent): a node keeps the lights of its parent's list that overlap it,
-// and is split into eight children while some light's support boundary crosses it (a light
-// holding the whole node would hold each child too) and its edge is above the leaf edge.
-// That is the octree the document's insertion of single light trees builds (a node is split
-// where some light's single tree is split), found without building the single trees. Only
+// places a fragment can be; elsewhere nodes are absent): a node keeps the lights of its parent's
+// list that overlap it, and is split into eight children while some light's support boundary
+// crosses it (a light holding the whole node would hold each child too) and its edge is above the
+// leaf edge. That is the octree the document's insertion of single light trees builds (a node is
+// split where some light's single tree is split), found without building the single trees. Only
 // children with lights exist; the others are empty leaves, marked absent in their parent.
 //
 // Bounds: the root is the cube over the scene's geometry bounds intersected with the
@@ -56,12 +56,12 @@ struct OctreeOptions {
 float octreeLeafEdge(const std::vector<Light>& lights);
 
 struct OctreeNode {
-  glm::uvec3 cell{0};           // integer cell coordinate at its level
-  std::uint32_t first = 0;      // leaf: its list, indices[first, first + count)
-  std::uint32_t count = 0;      // leaf: lights in its list
-  std::uint32_t firstChild = 0; // branch: its children, in octant order, from here on in
-                                // the next level (only those in childMask)
-  std::uint8_t childMask = 0;   // branch: bit x + 2y + 4z set where that child exists
+  glm::uvec3 cell{0};            // integer cell coordinate at its level
+  std::uint32_t first = 0;       // leaf: its list, indices[first, first + count)
+  std::uint32_t count = 0;       // leaf: lights in its list
+  std::uint32_t firstChild = 0;  // branch: its children, in octant order, from here on in
+                                 // the next level (only those in childMask)
+  std::uint8_t childMask = 0;    // branch: bit x + 2y + 4z set where that child exists
   bool leaf = true;
   // The box in its cell that holds the geometry there (bake/octree_surfaces.h; the cell
   // without geometry): what its lights were tested against.
@@ -88,9 +88,9 @@ struct LightOctree {
   std::size_t nodeCount() const;
 };
 
-// Builds the octree of `lights` over the geometry of `scene`: refined only in the cells its primitives touch
-// (bake/octree_surfaces.h). A scene without geometry gets the whole octree of the lights'
-// supports, refined everywhere. Never throws on valid lights.
+// Builds the octree of `lights` over the geometry of `scene`: refined only in the cells its
+// primitives touch (bake/octree_surfaces.h). A scene without geometry gets the whole octree of the
+// lights' supports, refined everywhere. Never throws on valid lights.
 LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scene,
                              const OctreeOptions& options = {});
 

@@ -38,7 +38,8 @@ PackedLights packLights(const std::vector<Light>& lights) {
   return packed;
 }
 
-std::vector<float> packLightTexels(const std::vector<Light>& lights, const std::vector<int>& order) {
+std::vector<float> packLightTexels(const std::vector<Light>& lights,
+                                   const std::vector<int>& order) {
   std::vector<float> out(order.size() * layout::kFloatsPerLight, 0.0f);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const Light& l = lights[std::size_t(order[i])];

@@ -111,8 +111,7 @@ OctreeList linklessListAt(const LinklessOctree& o, glm::vec3 p) {
   glm::uvec3 key(0u);
   for (int level = 0;; ++level) {
     const LinklessLevel& l = o.level[std::size_t(level)];
-    const std::uint32_t* texel =
-        &o.nodes[2 * (std::size_t(l.nodeBase) + packedSlot(o, l, key))];
+    const std::uint32_t* texel = &o.nodes[2 * (std::size_t(l.nodeBase) + packedSlot(o, l, key))];
     if (texel[1] & kOctreeLeafBit) return {texel[0], texel[1] & ~kOctreeLeafBit};
     key = cell >> std::uint32_t(deepest - level - 1);
     const glm::uvec3 c = key & 1u;

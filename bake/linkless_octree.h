@@ -23,12 +23,12 @@ namespace manylight {
 using layout::kOctreeLeafBit;
 
 struct LinklessLevel {
-  glm::ivec3 dims{1};      // the level's hash table extent
-  int nodeBase = 0;        // its first texel in `nodes`
-  int offsetBase = 0;      // its first texel in `offsets`
-  int offsetCount = 1;     // its offset table's entries
-  int nodeCount = 0;       // nodes stored (keys)
-  int attempts = 1;        // hash constructions tried
+  glm::ivec3 dims{1};   // the level's hash table extent
+  int nodeBase = 0;     // its first texel in `nodes`
+  int offsetBase = 0;   // its first texel in `offsets`
+  int offsetCount = 1;  // its offset table's entries
+  int nodeCount = 0;    // nodes stored (keys)
+  int attempts = 1;     // hash constructions tried
 };
 
 struct LinklessOctree {
@@ -40,10 +40,10 @@ struct LinklessOctree {
   std::vector<std::uint16_t> offsets;  // 4 values per texel
   std::vector<std::uint32_t> indices;  // slots of `order`
   std::vector<int> order;              // LightOctree::order: the lights' texture order
-  std::uint32_t globalCount = 0;    // the global list's length
-  std::uint32_t maxLeafCount = 0;   // the longest leaf list
-  std::vector<int> wholeScene;      // LightOctree::wholeScene
-  std::size_t unreached = 0;        // LightOctree::unreached.size()
+  std::uint32_t globalCount = 0;       // the global list's length
+  std::uint32_t maxLeafCount = 0;      // the longest leaf list
+  std::vector<int> wholeScene;         // LightOctree::wholeScene
+  std::size_t unreached = 0;           // LightOctree::unreached.size()
   std::size_t bytes() const;
 };
 

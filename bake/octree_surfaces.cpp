@@ -16,7 +16,7 @@ struct Grid {
 
 struct Triangle {
   glm::vec3 a, b, c;
-  glm::vec3 normal;  // unnormalised; zero for lines, points and slivers
+  glm::vec3 normal;              // unnormalised; zero for lines, points and slivers
   glm::vec3 lo{0.0f}, hi{0.0f};  // bounding box, grown by the margin
 };
 

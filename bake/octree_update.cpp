@@ -99,7 +99,8 @@ void DynamicOctree::repack() {
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       if (!nodes[i].leaf) continue;
       const std::vector<std::uint32_t>& list = lists_[std::size_t(level)][i];
-      std::uint32_t* texel = &packed_.nodes[2 * (std::size_t(l.nodeBase) + slot_[std::size_t(level)][i])];
+      std::uint32_t* texel =
+          &packed_.nodes[2 * (std::size_t(l.nodeBase) + slot_[std::size_t(level)][i])];
       texel[0] = std::uint32_t(packed_.indices.size());
       texel[1] = kOctreeLeafBit | std::uint32_t(list.size());
       packed_.indices.insert(packed_.indices.end(), list.begin(), list.end());

@@ -42,7 +42,8 @@ std::vector<int> moveSome(std::vector<Light>& lights, std::mt19937& rng) {
   for (std::size_t k = 0; k < lights.size() / 100; ++k) changed.push_back(pick(rng));
   std::sort(changed.begin(), changed.end());
   changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-  for (int i : changed) lights[std::size_t(i)].position += glm::vec3(step(rng), step(rng), step(rng));
+  for (int i : changed)
+    lights[std::size_t(i)].position += glm::vec3(step(rng), step(rng), step(rng));
   return changed;
 }
 
@@ -73,8 +74,7 @@ void PlaybackFrame(benchmark::State& state) {
   const Scene& scene = room();
   const int w = 640, h = 360;
   std::vector<Light> lights = scene.lights;
-  const std::unique_ptr<Renderer> renderer =
-      prepareRenderer(scene, lights, w, h, Method::Octree);
+  const std::unique_ptr<Renderer> renderer = prepareRenderer(scene, lights, w, h, Method::Octree);
   const View view = makeView(scene.cameras[0], w, h);
   FrameSettings settings;
   std::mt19937 rng(1);
@@ -84,7 +84,8 @@ void PlaybackFrame(benchmark::State& state) {
     renderer->moveLights(lights, moveSome(lights, rng), {});
     renderer->render(view, settings);
   }
-  state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["fps"] =
+      benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 BENCHMARK(Rebuild)->Unit(benchmark::kMillisecond)->UseRealTime();

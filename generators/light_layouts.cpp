@@ -43,6 +43,36 @@ LightLayout parseLightLayout(const std::string& name) {
   throw Error("unknown light layout '" + name + "' (choose from " + choices + ")");
 }
 
+namespace {
+
+// The ranged layouts' light i of `count`, drawing from `u` and `rng`.
+void placeRanged(Light& l, LightLayout layout, int i, int count, std::mt19937& rng,
+                 std::uniform_real_distribution<float>& u) {
+  if (layout == LightLayout::UniformRanged) {
+    // kRangedReach = count / volume · 4/3 π r³ over the room's 9 × 4 × 9 m.
+    const float r = float(std::cbrt(3.0 * 324.0 * kRangedReach / (4.0 * 3.14159265 * count)));
+    l.range = r;
+    l.intensity = 0.04f * r * r;  // irradiance about 2 on the walls, whatever the count
+    return;
+  }
+  // A lamp at height r/2 lights a disc of radius r/2 · tan 0.9 ≈ 0.63 r of the floor:
+  // kRangedReach = count / 81 m² · π (0.63 r)².
+  const float r = float(std::sqrt(kRangedReach * 81.0 / (1.25 * count)));
+  const int side = std::max(1, int(std::ceil(std::sqrt(double(count)))));
+  const glm::vec2 cell(float(i % side) + u(rng), float(i / side) + u(rng));
+  l.type = LightType::Spot;
+  l.position =
+      glm::vec3(-4.5f + 9.0f * cell.x / float(side), 0.5f * r, -4.5f + 9.0f * cell.y / float(side));
+  l.direction = {0.0f, -1.0f, 0.0f};
+  l.outerConeAngle = 0.9f;
+  l.innerConeAngle = 0.5f;
+  l.range = r;
+  l.colour = {1.0f, 0.75f, 0.45f};
+  l.intensity = 0.01f * r * r;  // irradiance about 2 on the floor, whatever the count
+}
+
+}  // namespace
+
 std::vector<Light> layoutLights(LightLayout layout, int count, std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -121,30 +151,10 @@ std::vector<Light> layoutLights(LightLayout layout, int count, std::uint32_t see
           l.colour[c] = float(decodeSrgb8(std::uint8_t(i % 4 == c ? 0 : code(rng))));
         break;
       }
-      case LightLayout::UniformRanged: {
-        // kRangedReach = count / volume · 4/3 π r³ over the room's 9 × 4 × 9 m.
-        const float r = float(std::cbrt(3.0 * 324.0 * kRangedReach / (4.0 * 3.14159265 * count)));
-        l.range = r;
-        l.intensity = 0.04f * r * r;  // irradiance about 2 on the walls, whatever the count
+      case LightLayout::UniformRanged:
+      case LightLayout::StreetRanged:
+        placeRanged(l, layout, i, count, rng, u);
         break;
-      }
-      case LightLayout::StreetRanged: {
-        // A lamp at height r/2 lights a disc of radius r/2 · tan 0.9 ≈ 0.63 r of the floor:
-        // kRangedReach = count / 81 m² · π (0.63 r)².
-        const float r = float(std::sqrt(kRangedReach * 81.0 / (1.25 * count)));
-        const int side = std::max(1, int(std::ceil(std::sqrt(double(count)))));
-        const glm::vec2 cell(float(i % side) + u(rng), float(i / side) + u(rng));
-        l.type = LightType::Spot;
-        l.position = glm::vec3(-4.5f + 9.0f * cell.x / float(side), 0.5f * r,
-                               -4.5f + 9.0f * cell.y / float(side));
-        l.direction = {0.0f, -1.0f, 0.0f};
-        l.outerConeAngle = 0.9f;
-        l.innerConeAngle = 0.5f;
-        l.range = r;
-        l.colour = {1.0f, 0.75f, 0.45f};
-        l.intensity = 0.01f * r * r;  // irradiance about 2 on the floor, whatever the count
-        break;
-      }
       case LightLayout::Mixed:
         l.type = LightType(i % 3);
         l.direction = glm::normalize(glm::vec3(-3.0f + 6.0f * u(rng), 0.0f, -3.0f + 6.0f * u(rng)) -

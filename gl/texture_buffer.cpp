@@ -16,7 +16,7 @@ TextureBuffer uploadTextureBuffer(const void* data, std::size_t texels, GLenum f
   }
   TextureBuffer t;
   glBindBuffer(GL_TEXTURE_BUFFER, t.buffer.id());
-  const std::size_t bytes = format == GL_R32UI                              ? 4
+  const std::size_t bytes = format == GL_R32UI                             ? 4
                             : format == GL_RG32UI || format == GL_RGBA16UI ? 8
                                                                            : 16;
   glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(texels * bytes), data, GL_STATIC_DRAW);

@@ -43,12 +43,12 @@ void OctreeMethod::replace(const LinklessOctree& octree, const std::vector<Light
 
 int OctreeMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const View& view,
                         int perPass) const {
-  if (perPass <= 0 || perPass > layout::kOctreeEntriesPerPass) perPass = layout::kOctreeEntriesPerPass;
+  if (perPass <= 0 || perPass > layout::kOctreeEntriesPerPass)
+    perPass = layout::kOctreeEntriesPerPass;
   glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.lightingFramebuffer().id());
-  const gl::Program& shader =
-      gl::cachedProgram("fullscreen.vert", "lighting_octree.frag",
-                        glsl::octreeDefines(scene.hasSpecular() ? glsl::kOctreeHasSpecular : 0u),
-                        {"oRadiance"});
+  const gl::Program& shader = gl::cachedProgram(
+      "fullscreen.vert", "lighting_octree.frag",
+      glsl::octreeDefines(scene.hasSpecular() ? glsl::kOctreeHasSpecular : 0u), {"oRadiance"});
   shader.use();
   bindLightingInputs(shader, gbuffer, scene, view);
   // The octree's own light texture, in its order, in place of the scene's.

@@ -24,7 +24,7 @@ struct OctreeFrameStats {
                                   // listed: a spot whose cone misses the cell may not be)
   double lightsLit = 0.0;         // of which a spot's outer cone holds the point too: the
                                   // lights that can light it (bake/light_octree.h)
-  long long missed = 0;          // with bruteForce: lights reaching a pixel not in its lists
+  long long missed = 0;           // with bruteForce: lights reaching a pixel not in its lists
 };
 
 class OctreeMethod {
@@ -50,7 +50,7 @@ class OctreeMethod {
   const LinklessOctree& octree() const { return octree_; }
 
  private:
-  LinklessOctree octree_;  // kept for the statistics
+  LinklessOctree octree_;      // kept for the statistics
   std::vector<Light> lights_;  // in light texture order
   gl::TextureBuffer lightTexture_, nodes_, offsets_, indices_;
 };

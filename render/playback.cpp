@@ -32,9 +32,10 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
   out.lightsAnimated = lightsMove;
   const float duration = std::max(out.animated ? start.animation.duration : 0.0f,
                                   lightsMove ? scene.lightAnimation.duration() : 0.0f);
-  const int frames = request.frames > 0                 ? request.frames
-                     : out.animated || lightsMove ? int(std::floor(duration * request.fps + 1e-3f)) + 1
-                                                  : 120;
+  const int frames = request.frames > 0 ? request.frames
+                     : out.animated || lightsMove
+                         ? int(std::floor(duration * request.fps + 1e-3f)) + 1
+                         : 120;
   std::vector<Light> lights;
   std::vector<int> changed;
   const BakeOptions bake{r.lightcuts.trees, r.octree};
@@ -50,9 +51,9 @@ PlaybackOutcome play(const Scene& scene, const PlaybackRequest& request, const F
       const auto moveStart = std::chrono::steady_clock::now();
       scene.lightAnimation.sampleLights(scene, float(i) / request.fps, lights, &changed);
       if (!changed.empty()) p.renderer->moveLights(lights, changed, bake);
-      out.moveMs.push_back(std::chrono::duration<double, std::milli>(
-                               std::chrono::steady_clock::now() - moveStart)
-                               .count());
+      out.moveMs.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - moveStart)
+              .count());
     }
     FrameStats stats;
     // A readback of the whole statistics target: the first frame only, unless asked for.

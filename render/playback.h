@@ -28,14 +28,14 @@ struct PlaybackRequest {
 
 struct PlaybackOutcome {
   int framesRendered = 0;
-  bool framed = false;      // no camera: the orbit starts from the thumbnail framing
-  bool animated = false;    // the camera's animation was played (no orbit)
+  bool framed = false;          // no camera: the orbit starts from the thumbnail framing
+  bool animated = false;        // the camera's animation was played (no orbit)
   bool lightsAnimated = false;  // the scene's light animation was played
-  bool defaultRig = false;  // no lights: the default rig, fixed to the first frame's camera
+  bool defaultRig = false;      // no lights: the default rig, fixed to the first frame's camera
   std::size_t lightCount = 0;
   double bakeMs = 0.0;
-  Method method = Method::Reference;  // the method used (auto's choice for Method::Auto)
-  std::string methodReason;           // with Method::Auto: why
+  Method method = Method::Reference;    // the method used (auto's choice for Method::Auto)
+  std::string methodReason;             // with Method::Auto: why
   std::vector<double> renderMs;         // per frame
   std::vector<double> cutMs;            // per frame: of renderMs, lightcuts' shared cuts on the CPU
   std::vector<int> cutsMade, cutsKept;  // per frame: shared cuts found, and kept

@@ -52,13 +52,13 @@ PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
   MethodChoice choice;
   if (method == Method::Auto) {
     const auto start = std::chrono::steady_clock::now();
-    choice = chooseMethod(scene, lights, request.width, request.height, request.octree,
-                          baked.octree);
+    choice =
+        chooseMethod(scene, lights, request.width, request.height, request.octree, baked.octree);
     method = choice.method;
     methodReason = choice.reason;
     if (choice.octree) baked.octree = choice.octree.get();
-    bakeMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                  .count();
+    bakeMs +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   double prepareMs = 0.0;
   renderer = prepareRenderer(scene, lights, request.width, request.height, method,

@@ -49,7 +49,8 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
       if (!baked.octree) throw Error("octree needs the lights' baked octree");
       octree_ = std::make_unique<OctreeMethod>(*baked.octree, lights);
     } else {
-      if (!baked.trees) throw Error(std::string(methodName(method)) + " needs the lights' baked trees");
+      if (!baked.trees)
+        throw Error(std::string(methodName(method)) + " needs the lights' baked trees");
       distance_ = method == Method::LightcutsDistance;
       lightcuts_ = std::make_unique<LightcutsMethod>(*baked.trees, lights, gbuffer_, distance_);
     }
@@ -77,7 +78,8 @@ void warmUpGeometryPass(Aov aov) {
 }
 
 void Renderer::replaceLights(const std::vector<Light>& lights) {
-  assert(!lightcuts_ && !octree_ && "trees and octrees are built from the lights given at construction");
+  assert(!lightcuts_ && !octree_ &&
+         "trees and octrees are built from the lights given at construction");
   gpu_.replaceLights(lights);
 }
 
@@ -155,8 +157,9 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
       glFinish();
       const auto statsStart = std::chrono::steady_clock::now();
       stats->octree = octree_->frameStats(gbuffer_);
-      statsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - statsStart)
-                    .count();
+      statsMs =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - statsStart)
+              .count();
     }
     if (gpu_.hasBlended()) {
       if (!blend_) blend_ = std::make_unique<BlendPass>(gbuffer_.width(), gbuffer_.height());

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bake/octree_update.h"
 #include "image/image.h"
 #include "render/aov.h"
 #include "render/blend_pass.h"
@@ -13,7 +14,6 @@
 #include "render/geometry_pass.h"
 #include "render/gpu_scene.h"
 #include "render/lightcuts_method.h"
-#include "bake/octree_update.h"
 #include "render/octree_method.h"
 #include "render/reference_method.h"
 #include "scene/camera.h"
@@ -30,7 +30,7 @@ const char* methodName(Method m);
 
 struct FrameSettings {
   glm::vec3 ambient{0.0f};
-  int lightsPerPass = 0;  // 0: ReferenceMethod::lightsPerPass(pixels); octree: list entries
+  int lightsPerPass = 0;        // 0: ReferenceMethod::lightsPerPass(pixels); octree: list entries
   LightcutsSettings lightcuts;  // the lightcuts methods
   bool readCutStats = true;     // lightcuts: read the per-pixel cut statistics back into FrameStats
   // Reference method: light only the bands of kRowBand rows whose index is a multiple of

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -136,6 +137,33 @@ TEST(Baked, TheOctreeReadsBackAsBaked) {
   }
 }
 
+TEST(Baked, TheLightAnimationReadsBackAndPlaysTheSame) {
+  const std::filesystem::path file = std::filesystem::path(MANYLIGHT_SHARED_SCENES) /
+                                     "AnimateAllTheThings/24_animation_pointer.gltf";
+  if (!std::filesystem::exists(file))
+    GTEST_SKIP() << "no " << file << " (the shared scenes are absent)";
+  const BakedScene baked = bakeScene(loadGltf(file.string()), {});
+  ASSERT_TRUE(baked.scene.lightAnimation.animated());
+  const std::string path = (testFolder() / "animated.mlbake").string();
+  writeBakedScene(path, baked);
+  const BakedScene b = readBakedScene(path);
+  ASSERT_EQ(b.scene.lightAnimation.lights.size(), baked.scene.lightAnimation.lights.size());
+  EXPECT_EQ(b.scene.lightAnimation.duration(), baked.scene.lightAnimation.duration());
+  for (float t : {0.0f, 2.5f, 5.0f, 9.0f}) {
+    std::vector<Light> a, c;
+    baked.scene.lightAnimation.sampleLights(baked.scene, t, a);
+    b.scene.lightAnimation.sampleLights(b.scene, t, c);
+    ASSERT_EQ(a.size(), c.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].position, c[i].position) << t;
+      EXPECT_EQ(a[i].colour, c[i].colour) << t;
+      EXPECT_EQ(a[i].intensity, c[i].intensity) << t;
+      EXPECT_EQ(a[i].range, c[i].range) << t;
+      EXPECT_EQ(a[i].outerConeAngle, c[i].outerConeAngle) << t;
+    }
+  }
+}
+
 TEST(Baked, ASceneWithoutLightsHasNoTrees) {
   const std::string path = (testFolder() / "dark.mlbake").string();
   Scene dark = roomWithLights(1);
@@ -171,16 +199,62 @@ std::size_t sectionOffset(const std::string& file, const char (&tag)[5]) {
   return 0;
 }
 
+struct DamageCase {
+  const char* name;
+  std::string content;
+  std::string message;  // after "PATH: "
+};
+
+void expectRefused(const std::vector<DamageCase>& cases) {
+  for (const DamageCase& c : cases) {
+    const std::string path = (testFolder() / (std::string(c.name) + ".mlbake")).string();
+    writeBytes(path, c.content);
+    try {
+      readBakedScene(path);
+      ADD_FAILURE() << c.name << ": accepted";
+    } catch (const BakeError& e) {
+      EXPECT_EQ(std::string(e.what()), path + ": " + c.message) << c.name;
+    }
+  }
+}
+
+TEST(Baked, ADamagedOctreeIsRefused) {
+  const std::string good = (testFolder() / "good-octree.mlbake").string();
+  writeBakedScene(good, bakeScene(roomWithLights(40), {}));
+  const std::string bytes = readBytes(good);
+  std::vector<DamageCase> octreeCases;
+  // The octree section: origin, leaf edge, levels, 32 bytes a level, then the node texels.
+  const std::size_t octree = sectionOffset(bytes, "OCTR");
+  std::uint32_t levels;
+  std::memcpy(&levels, &bytes[octree + 16], 4);
+  std::uint64_t nodeWords;
+  const std::size_t nodes = octree + 20 + 32 * std::size_t(levels);
+  std::memcpy(&nodeWords, &bytes[nodes], 8);
+  std::string badLeaf = bytes;
+  for (std::uint64_t w = 1; w < nodeWords; w += 2) {  // the first leaf's list: far past the end
+    std::uint32_t word;
+    std::memcpy(&word, &bytes[nodes + 8 + 4 * w], 4);
+    if (!(word & kOctreeLeafBit)) continue;
+    const std::uint32_t first = 1u << 30;
+    std::memcpy(&badLeaf[nodes + 8 + 4 * (w - 1)], &first, 4);
+    break;
+  }
+  reseal(badLeaf);
+  octreeCases.push_back(
+      {"octree-leaf", badLeaf, "light octree: a leaf's list runs past the index list"});
+  std::string badLevels = bytes;
+  badLevels[octree + 16] = 40;
+  reseal(badLevels);
+  octreeCases.push_back(
+      {"octree-levels", badLevels, "light octree: octree levels: 40 is more than 16"});
+  expectRefused(octreeCases);
+}
+
 TEST(Baked, DamagedAndForeignFilesAreRefused) {
   const std::string good = (testFolder() / "good.mlbake").string();
   writeBakedScene(good, bakeScene(roomWithLights(40), {}));
   const std::string bytes = readBytes(good);
-  struct Case {
-    const char* name;
-    std::string content;
-    std::string message;  // after "PATH: "
-  };
-  std::vector<Case> cases;
+  std::vector<DamageCase> cases;
   cases.push_back({"truncated", bytes.substr(0, bytes.size() - 1),
                    "truncated or extended: " + std::to_string(bytes.size() - 1) +
                        " bytes, the header says " + std::to_string(bytes.size())});
@@ -231,44 +305,13 @@ TEST(Baked, DamagedAndForeignFilesAreRefused) {
   index[sectionOffset(bytes, "INST") + 4] = 100;  // instance 0's mesh
   reseal(index);
   cases.push_back({"mesh-index", index, "instances: mesh index out of range"});
-  // The octree section: origin, leaf edge, levels, 32 bytes a level, then the node texels.
-  const std::size_t octree = sectionOffset(bytes, "OCTR");
-  std::uint32_t levels;
-  std::memcpy(&levels, &bytes[octree + 16], 4);
-  std::uint64_t nodeWords;
-  const std::size_t nodes = octree + 20 + 32 * std::size_t(levels);
-  std::memcpy(&nodeWords, &bytes[nodes], 8);
-  std::string badLeaf = bytes;
-  for (std::uint64_t w = 1; w < nodeWords; w += 2) {  // the first leaf's list: far past the end
-    std::uint32_t word;
-    std::memcpy(&word, &bytes[nodes + 8 + 4 * w], 4);
-    if (!(word & kOctreeLeafBit)) continue;
-    const std::uint32_t first = 1u << 30;
-    std::memcpy(&badLeaf[nodes + 8 + 4 * (w - 1)], &first, 4);
-    break;
-  }
-  reseal(badLeaf);
-  cases.push_back({"octree-leaf", badLeaf, "light octree: a leaf's list runs past the index list"});
-  std::string badLevels = bytes;
-  badLevels[octree + 16] = 40;
-  reseal(badLevels);
-  cases.push_back({"octree-levels", badLevels, "light octree: octree levels: 40 is more than 16"});
   std::string table = bytes;
   const std::uint64_t past = bytes.size() + 10;
   std::memcpy(&table[kBakedHeaderBytes + 4 + 8], &past, 8);
   reseal(table);
   cases.push_back({"table", table, "section table: a section lies outside the file"});
 
-  for (const Case& c : cases) {
-    const std::string path = (testFolder() / (std::string(c.name) + ".mlbake")).string();
-    writeBytes(path, c.content);
-    try {
-      readBakedScene(path);
-      ADD_FAILURE() << c.name << ": accepted";
-    } catch (const BakeError& e) {
-      EXPECT_EQ(std::string(e.what()), path + ": " + c.message) << c.name;
-    }
-  }
+  expectRefused(cases);
   const std::string missing = (testFolder() / "missing.mlbake").string();
   try {
     readBakedScene(missing);

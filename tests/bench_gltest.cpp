@@ -231,7 +231,8 @@ TEST(Bench, AutoChoosesByTheCostModel) {
   std::vector<Light> few(1000);
   MethodChoice c = chooseMethod(scene, few, 256, 256, {});
   EXPECT_EQ(c.method, Method::Reference);
-  EXPECT_EQ(c.reason, "1000 lights × 256×256 pixels: the reference is exact and takes up to about 0.16 s");
+  EXPECT_EQ(c.reason,
+            "1000 lights × 256×256 pixels: the reference is exact and takes up to about 0.16 s");
   // 65,536 lights without a range at 640×480: lightcuts.
   std::vector<Light> unranged(65536);
   c = chooseMethod(scene, unranged, 640, 480, {});

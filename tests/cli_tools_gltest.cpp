@@ -265,11 +265,11 @@ TEST(CliTools, PlaybackOrbitsTheCameraFrameByFrame) {
   const fs::path dir = testFolder();
   const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
   const std::string frames = (dir / "frames" / "f%03d.png").string();
-  ProcessResult r =
-      manylight("play " + scene + " -o " + frames +
-                " --frames 4 --orbit 20 --size 48x32 --tone-map none --exposure 0 --method lightcuts"
-                " --stats " +
-                (dir / "play.json").string());
+  ProcessResult r = manylight(
+      "play " + scene + " -o " + frames +
+      " --frames 4 --orbit 20 --size 48x32 --tone-map none --exposure 0 --method lightcuts"
+      " --stats " +
+      (dir / "play.json").string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto stats = nlohmann::json::parse(readFile(dir / "play.json"));
   EXPECT_EQ(stats["frames"], 4);

@@ -47,8 +47,8 @@ struct ListCheck {
 
 // At `points` random points of [−half, half]³: lights that reach but are not listed, and the
 // list lengths against the lights reaching.
-ListCheck checkLists(const std::vector<Light>& lights, const LightOctree& o, float half,
-                     int points, std::uint32_t seed) {
+ListCheck checkLists(const std::vector<Light>& lights, const LightOctree& o, float half, int points,
+                     std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-half, half);
   ListCheck check;
@@ -107,7 +107,8 @@ std::vector<glm::vec3> surfacePoints(const Scene& scene, int count, std::uint32_
       for (std::size_t i = 0; i + 3 <= p.indices.size(); i += 3) {
         std::array<glm::vec3, 3> t;
         for (int k = 0; k < 3; ++k)
-          t[std::size_t(k)] = glm::vec3(inst.world * glm::vec4(p.positions[p.indices[i + std::size_t(k)]], 1.0f));
+          t[std::size_t(k)] =
+              glm::vec3(inst.world * glm::vec4(p.positions[p.indices[i + std::size_t(k)]], 1.0f));
         triangles.push_back(t);
         area.push_back((area.empty() ? 0.0 : area.back()) +
                        glm::length(glm::cross(t[1] - t[0], t[2] - t[0])));
@@ -185,7 +186,8 @@ TEST(DynamicOctree, MovedLightsAreListedWhereTheyReachAndNowhereTwice) {
     for (int k = 0; k < 200; ++k) changed.push_back(pick(rng));
     std::sort(changed.begin(), changed.end());
     changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-    for (int i : changed) lights[std::size_t(i)].position += glm::vec3(step(rng), step(rng), step(rng));
+    for (int i : changed)
+      lights[std::size_t(i)].position += glm::vec3(step(rng), step(rng), step(rng));
     ASSERT_TRUE(dynamic.update(lights, changed));
     const Miss m = missesAt(lights, dynamic.packed(), points);
     EXPECT_EQ(m.missed, 0) << "frame " << frame;

@@ -12,8 +12,8 @@
 
 #include "generators/light_layouts.h"
 #include "render/playback.h"
-#include "scene/camera_animation.h"
 #include "render/render_job.h"
+#include "scene/camera_animation.h"
 #include "scene/gltf_loader.h"
 #include "tests/gl_support.h"
 #include "tests/test_support.h"
@@ -90,8 +90,8 @@ OctreeRun run(const std::vector<Light>& lights, int entriesPerPass = 0) {
   std::cout << lights.size() << " lights: " << r.comparison.pixels << " pixels, worst "
             << r.comparison.worst << ", entries " << r.stats.listEntries << ", evaluated "
             << r.stats.lightEvaluations << ", reaching " << r.stats.lightsReaching << ", lit "
-            << r.stats.lightsLit << ", levels "
-            << r.octree.levels << ", nodes " << r.octree.nodes << ", passes " << r.passes << "\n";
+            << r.stats.lightsLit << ", levels " << r.octree.levels << ", nodes " << r.octree.nodes
+            << ", passes " << r.passes << "\n";
   return r;
 }
 
@@ -186,7 +186,8 @@ TEST(Octree, MovedLightsStayExact) {
     for (int k = 0; k < 400; ++k) changed.push_back(pick(rng));
     std::sort(changed.begin(), changed.end());
     changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-    for (int i : changed) lights[std::size_t(i)].position += glm::vec3(step(rng), step(rng), step(rng));
+    for (int i : changed)
+      lights[std::size_t(i)].position += glm::vec3(step(rng), step(rng), step(rng));
     p.renderer->moveLights(lights, changed, {});
     const Image image = p.renderer->render(view, p.settings);
     Scene moved = room();
@@ -202,9 +203,10 @@ TEST(Octree, MovedLightsStayExact) {
 // The shared AnimateAllTheThings asset plays its light animation: each frame as the
 // reference renders the lights sampled at its time.
 TEST(Octree, AnimateAllTheThingsPlaysItsLightAnimation) {
-  const std::filesystem::path file =
-      std::filesystem::path(MANYLIGHT_SHARED_SCENES) / "AnimateAllTheThings/24_animation_pointer.gltf";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file << " (the shared scenes are absent)";
+  const std::filesystem::path file = std::filesystem::path(MANYLIGHT_SHARED_SCENES) /
+                                     "AnimateAllTheThings/24_animation_pointer.gltf";
+  if (!std::filesystem::exists(file))
+    GTEST_SKIP() << "no " << file << " (the shared scenes are absent)";
   context();
   const Scene scene = loadGltf(file.string());
   ASSERT_TRUE(scene.lightAnimation.animated());
@@ -215,10 +217,11 @@ TEST(Octree, AnimateAllTheThingsPlaysItsLightAnimation) {
   play.frames = 4;
   play.fps = 0.4f;  // frames at 0, 2.5, 5 and 7.5 s
   std::vector<Image> frames;
-  const PlaybackOutcome out = manylight::play(scene, play, [&](int, const Image& image, const FrameStats&) {
-    frames.push_back(image);
-    return true;
-  });
+  const PlaybackOutcome out =
+      manylight::play(scene, play, [&](int, const Image& image, const FrameStats&) {
+        frames.push_back(image);
+        return true;
+      });
   EXPECT_TRUE(out.lightsAnimated);
   ASSERT_EQ(frames.size(), 4u);
   std::vector<Light> lights;
