@@ -177,6 +177,27 @@ std::string lightList(int count) {
   return writeText("lights.csv", csv.str());
 }
 
+TEST(CliOptions, TheOctreeNamesLightsWhoseRangeHoldsTheWholeScene) {
+  const std::string scene = lookingAway();
+  const std::string lights = writeText(
+      "huge.csv",
+      "x,y,z,r,g,b,brightness,radius\n0,0,0,255,255,255,1,1000\n2,0,0,255,255,255,1,1000\n"
+      "5,5,5,255,255,255,1,0.5\n");
+  const std::string out = (testFolder() / "huge.png").string();
+  const std::string stats = (testFolder() / "huge.json").string();
+  const ProcessResult r = manylight("render " + scene + " --lights " + lights + " -o " + out +
+                                    " --size 32x24 --method octree --stats " + stats);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err, "manylight: " + scene +
+                       ": warning: 2 ranged lights reach the whole scene (their range holds its "
+                       "bounds), so the octree leaves them to the list every pixel evaluates: "
+                       "light 0, 1\n");
+  const nlohmann::json s = nlohmann::json::parse(readFile(stats));
+  EXPECT_EQ(s["octree"]["whole_scene_lights"], 2);
+  EXPECT_EQ(s["octree"]["global_lights"], 2);
+  EXPECT_EQ(s["octree"]["unreached_lights"], 1);  // the third misses the box
+}
+
 TEST(CliOptions, TheDefaultMethodIsChosenPerSceneAndSaysWhy) {
   // 65,536 lights without a range × 320×240 pixels = 5.0e9 light evaluations: lightcuts.
   const std::string scene = lookingAway();
