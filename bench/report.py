@@ -95,6 +95,10 @@ def charts(rows, settings, docs):
                     for r in at:
                         if r["method"] == "reference":
                             f.write(f"{r['render_ms']}\n")
+                with open(f"{base}-octree.dat", "w") as f:
+                    for r in at:
+                        if r["method"] == "octree":
+                            f.write(f"{plotted_error(r)} {r['render_ms']}\n")
             series = {
                 "reference": lambda r: r["method"] == "reference",
                 "node": lambda r: r["method"] == "lightcuts" and r["mode"] == "node"
@@ -102,6 +106,7 @@ def charts(rows, settings, docs):
                 "total": lambda r: r["method"] == "lightcuts" and r["mode"] == "total"
                 and number(r["error"]) == 0.02,
                 "distance": lambda r: r["method"] == "lightcuts-distance",
+                "octree": lambda r: r["method"] == "octree",
             }
             for name, keep in series.items():
                 with open(os.path.join(data, f"{layout}-scaling-{name}.dat"), "w") as f:
@@ -123,8 +128,9 @@ def frontier_table(rows, n):
     for r in rows:
         if int(r["lights"]) != n:
             continue
-        cut = fmt(r["avg_cut"]) if r["method"] != "reference" else "—"
-        at_max = r["pixels_at_max_cut"] if r["method"] != "reference" else "—"
+        cuts = r["method"] not in ("reference", "octree")  # the methods without cuts
+        cut = fmt(r["avg_cut"]) if cuts else "—"
+        at_max = r["pixels_at_max_cut"] if cuts else "—"
         speed = number(r["ratio_to_reference"])
         lines.append(
             f"| {r['layout']} | {label(r)} | {fmt(r['render_ms'])} | "
@@ -138,7 +144,7 @@ def max_cut_line(rows, settings):
     # Rows merged from several runs (bench/merge_results.py) may differ in --max-cut.
     by_cut = {}
     for r in rows:
-        if r["method"] != "reference" and r.get("max_cut"):
+        if r["method"] not in ("reference", "octree") and r.get("max_cut"):
             by_cut.setdefault(int(r["max_cut"]), []).append(r["layout"])
     if len(by_cut) <= 1:
         return f"{next(iter(by_cut), settings.get('max_cut', 1000))} nodes"

@@ -1,7 +1,7 @@
 # Speed against accuracy, one panel per light count: render time (log) against the 99th
 # percentile of the per-pixel relative error (log). Lightcuts under each error mode is a
-# curve through its ε values; the distance criterion is one point; the reference (exact) is
-# a horizontal line. Data files come from bench/report.py.
+# curve through its ε values; the distance criterion is one point, the octree (exact: its
+# float rounding sits at the left edge) another; the reference (exact) is a horizontal line. Data files come from bench/report.py.
 # gnuplot -e "dir='DATA'; layout='uniform'; counts='64 1024'; out='x.png'" frontier.gp
 set terminal pngcairo size 1500,900 font "sans,10"
 set output out
@@ -21,6 +21,7 @@ do for [n in counts] {
        base."-node.dat" using 1:2:3 with labels offset 0,0.8 font "sans,7" notitle, \
        base."-total.dat" using 1:2 with linespoints pt 5 lc rgb "#d62728" title "lightcuts, total rule", \
        base."-distance.dat" using 1:2 with points pt 9 ps 1.5 lc rgb "#2ca02c" title "lightcuts-distance", \
+       base."-octree.dat" using 1:2 with points pt 13 ps 1.5 lc rgb "#9467bd" title "octree (exact)", \
        (ref eq "" ? 1/0 : real(ref)) with lines dt 2 lc rgb "black" title "reference (exact)"
 }
 unset multiplot

@@ -15,4 +15,5 @@ plot base."-scaling-reference.dat" using 1:2 with linespoints pt 7 lc rgb "black
      base."-scaling-node.dat" using 1:2 with linespoints pt 7 lc rgb "#1f77b4" title "lightcuts, node rule, ε = 0.02", \
      base."-scaling-total.dat" using 1:2 with linespoints pt 5 lc rgb "#d62728" title "lightcuts, total rule, ε = 0.02", \
      base."-scaling-distance.dat" using 1:2 with linespoints pt 9 lc rgb "#2ca02c" title "lightcuts-distance", \
+     base."-scaling-octree.dat" using 1:2 with linespoints pt 13 lc rgb "#9467bd" title "octree (exact)", \
      real(floor) with lines dt 2 lc rgb "gray40" title "1-light floor"
