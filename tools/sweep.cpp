@@ -14,6 +14,15 @@
 namespace manylight {
 namespace {
 
+// The octree evaluates lights without a range at every pixel, as the reference does: it is
+// measured only where most lights are ranged.
+bool measured(const SweepVariant& v, const std::vector<Light>& lights) {
+  if (v.method != Method::Octree) return true;
+  std::size_t ranged = 0;
+  for (const Light& l : lights) ranged += l.type != LightType::Directional && l.range > 0.0f;
+  return 2 * ranged >= lights.size();
+}
+
 // Linux keeps a per-process high-water mark of resident memory (VmHWM), which writing "5"
 // to /proc/self/clear_refs resets to the current size. Where that is refused, the mark
 // covers the whole process so far.
@@ -199,16 +208,12 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
   std::vector<RunRecord> out;
   std::map<Method, std::unique_ptr<Renderer>> renderers;
   std::map<Method, double> bakeMs;  // per renderer: its trees baked and uploaded
-  std::size_t ranged = 0;
-  for (const Light& l : lights) ranged += l.type != LightType::Directional && l.range > 0.0f;
   for (const SweepVariant& v : settings_.variants) {
     if (v.method == Method::Reference) {
       out.push_back(ref);
       continue;
     }
-    // The octree evaluates lights without a range at every pixel, as the reference does:
-    // timed only where most lights are ranged.
-    if (v.method == Method::Octree && 2 * ranged < lights.size()) continue;
+    if (!measured(v, lights)) continue;
     step(v.label());
     RunRecord r = blank(v);
     r.rowBandStride = ref.rowBandStride;
@@ -294,7 +299,7 @@ std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
   std::vector<long long> counts;
   Renderer reference(scene_, lights, w, h, Method::Reference);
   for (const SweepVariant& v : settings_.variants) {
-    if (v.method == Method::Reference) continue;
+    if (v.method == Method::Reference || !measured(v, lights)) continue;
     Temporal t;
     t.caseName = c.name;
     t.variant = v;
