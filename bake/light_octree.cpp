@@ -16,6 +16,9 @@ namespace {
 
 // Lists this long are split across threads (the nodes above the task level).
 constexpr std::size_t kParallelList = 1 << 16;
+// A build whose entries, projected from its finished tasks, exceed its budget this many times
+// is abandoned at once for a coarser one.
+constexpr double kProjectedOverBudget = 1.5;
 
 using octree::Box;
 using octree::coneMeetsBox;
@@ -185,6 +188,11 @@ void buildTasks(Build& top, Part& main, int threads) {
   const int levels = top.octree.levels;
   std::vector<Part> parts(top.tasks.size());
   std::atomic<std::size_t> next{0};
+  // The entries projected from the tasks done so far, weighted by their lists' lengths: a
+  // build that will plainly exceed its budget stops early rather than at the budget.
+  double allWeight = 0.0;
+  for (const Build::Task& t : top.tasks) allWeight += double(t.list.size());
+  std::atomic<std::size_t> doneWeight{0}, done{0};
   auto work = [&](int) {
     Build build(top.octree, top.supports, top.margin, top.entries, top.overflow);
     build.surfaces = top.surfaces;
@@ -195,6 +203,10 @@ void buildTasks(Build& top, Part& main, int threads) {
       part.nodes.resize(std::size_t(levels));
       part.nodes[top.taskLevel].push_back(main.nodes[top.taskLevel][top.tasks[t].index]);
       build.node(part, top.taskLevel, 0, top.tasks[t].list);
+      const double weight = double(doneWeight += top.tasks[t].list.size());
+      if (++done >= 8 && double(top.entries.load()) * allWeight >
+                             kProjectedOverBudget * double(top.budget) * weight)
+        top.overflow = true;
     }
   };
   std::vector<std::thread> pool;
