@@ -14,9 +14,10 @@ using namespace gl::api;
 namespace {
 
 template <typename T>
-gl::TextureBuffer upload(std::vector<T> data, std::size_t perTexel, GLenum format,
+gl::TextureBuffer upload(const std::vector<T>& data, std::size_t perTexel, GLenum format,
                          const std::string& what) {
-  if (data.empty()) data.assign(perTexel, T(0));  // keep the sampler complete
+  static const T zeros[4] = {};  // an empty table: one texel keeps the sampler complete
+  if (data.empty()) return gl::uploadTextureBuffer(zeros, 1, format, what);
   return gl::uploadTextureBuffer(data.data(), data.size() / perTexel, format, what);
 }
 
@@ -24,15 +25,15 @@ gl::TextureBuffer upload(std::vector<T> data, std::size_t perTexel, GLenum forma
 
 OctreeMethod::OctreeMethod(LinklessOctree octree, const std::vector<Light>& lights)
     : octree_(std::move(octree)) {
-  for (int index : octree_.order) lights_.push_back(lights[std::size_t(index)]);
-  lightTexture_ = upload(packLightTexels(lights, octree_.order), 4, GL_RGBA32F, "octree lights");
-  nodes_ = upload(octree_.nodes, 2, GL_RG32UI, "light octree nodes");
-  offsets_ = upload(octree_.offsets, 4, GL_RGBA16UI, "light octree hash offsets");
-  indices_ = upload(octree_.indices, 1, GL_R32UI, "light octree lists");
+  uploadAll(lights);
 }
 
 void OctreeMethod::replace(const LinklessOctree& octree, const std::vector<Light>& lights) {
   octree_ = octree;
+  uploadAll(lights);
+}
+
+void OctreeMethod::uploadAll(const std::vector<Light>& lights) {
   lights_.clear();
   for (int index : octree_.order) lights_.push_back(lights[std::size_t(index)]);
   lightTexture_ = upload(packLightTexels(lights, octree_.order), 4, GL_RGBA32F, "octree lights");
