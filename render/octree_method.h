@@ -50,6 +50,9 @@ class OctreeMethod {
   const LinklessOctree& octree() const { return octree_; }
 
  private:
+  // Uploads octree_ and its order of `lights`.
+  void uploadAll(const std::vector<Light>& lights);
+
   LinklessOctree octree_;      // kept for the statistics
   std::vector<Light> lights_;  // in light texture order
   gl::TextureBuffer lightTexture_, nodes_, offsets_, indices_;
