@@ -4,11 +4,13 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <mutex>
 #include <thread>
 
 #include "bake/light_pack.h"
 #include "bake/light_support.h"
 #include "bake/octree_surfaces.h"
+#include "bake/parallel.h"
 
 namespace manylight {
 
@@ -139,16 +141,12 @@ struct Build {
       // in order so each child's list stays sorted.
       std::vector<std::array<std::vector<std::uint32_t>, 8>> parts(
           static_cast<std::size_t>(threads));
-      std::vector<std::thread> pool;
       const std::size_t chunk = (list.size() + std::size_t(threads) - 1) / std::size_t(threads);
-      for (int t = 0; t < threads; ++t) {
+      runOnThreads(threads, [&](int t) {
         const std::size_t begin = std::min(list.size(), chunk * std::size_t(t));
         const std::size_t n = std::min(chunk, list.size() - begin);
-        pool.emplace_back([&, t, begin, n] {
-          sortIntoChildren(list.data() + begin, n, boxes, mask, coneDepth, parts[std::size_t(t)]);
-        });
-      }
-      for (std::thread& th : pool) th.join();
+        sortIntoChildren(list.data() + begin, n, boxes, mask, coneDepth, parts[std::size_t(t)]);
+      });
       for (int c = 0; c < 8; ++c) {
         for (const auto& part : parts)
           lists[c].insert(lists[c].end(), part[c].begin(), part[c].end());
@@ -188,12 +186,30 @@ void buildTasks(Build& top, Part& main, int threads) {
   const int levels = top.octree.levels;
   std::vector<Part> parts(top.tasks.size());
   std::atomic<std::size_t> next{0};
-  // The entries projected from the tasks done so far, weighted by their lists' lengths: a
-  // build that will plainly exceed its budget stops early rather than at the budget.
-  double allWeight = 0.0;
-  for (const Build::Task& t : top.tasks) allWeight += double(t.list.size());
-  std::atomic<std::size_t> doneWeight{0}, done{0};
-  auto work = [&](int) {
+  // The entries of the first tasks, once all of them are done, projected over every task by
+  // the lengths of their lists: a build that will plainly exceed its budget stops early
+  // rather than at the budget. Checked at fixed numbers of tasks (8, 16, 32, …) from their
+  // own entries alone, so the decision does not depend on the threads' timing.
+  std::vector<double> weightBefore(top.tasks.size() + 1, 0.0);
+  for (std::size_t t = 0; t < top.tasks.size(); ++t)
+    weightBefore[t + 1] = weightBefore[t] + double(top.tasks[t].list.size());
+  std::vector<std::atomic<bool>> finished(top.tasks.size());
+  std::mutex prefixMutex;
+  std::size_t prefix = 0;  // tasks [0, prefix) are finished
+  auto finish = [&](std::size_t t) {
+    finished[t] = true;
+    const std::lock_guard<std::mutex> lock(prefixMutex);
+    while (prefix < finished.size() && finished[prefix]) {
+      ++prefix;
+      if (prefix < 8 || (prefix & (prefix - 1)) != 0) continue;
+      double entries = 0.0;
+      for (std::size_t k = 0; k < prefix; ++k) entries += double(parts[k].indices.size());
+      if (entries * weightBefore.back() >
+          kProjectedOverBudget * double(top.budget) * weightBefore[prefix])
+        top.overflow = true;
+    }
+  };
+  runOnThreads(threads, [&](int) {
     Build build(top.octree, top.supports, top.margin, top.entries, top.overflow);
     build.surfaces = top.surfaces;
     build.budget = top.budget;
@@ -203,16 +219,9 @@ void buildTasks(Build& top, Part& main, int threads) {
       part.nodes.resize(std::size_t(levels));
       part.nodes[top.taskLevel].push_back(main.nodes[top.taskLevel][top.tasks[t].index]);
       build.node(part, top.taskLevel, 0, top.tasks[t].list);
-      const double weight = double(doneWeight += top.tasks[t].list.size());
-      if (++done >= 8 && double(top.entries.load()) * allWeight >
-                             kProjectedOverBudget * double(top.budget) * weight)
-        top.overflow = true;
+      finish(t);
     }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back(work, i);
-  work(0);
-  for (std::thread& th : pool) th.join();
+  });
 
   for (std::size_t t = 0; t < parts.size(); ++t) {
     const std::uint32_t indexBase = std::uint32_t(main.indices.size());

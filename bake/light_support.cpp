@@ -90,10 +90,10 @@ bool coneMeetsBox(const Support& s, const Box& b, float margin, int depth) {
 }
 
 // Whether the support may overlap the box grown by `margin` (conservative).
-bool overlaps(const Support& s, const Box& b, float margin) {
+bool overlaps(const Support& s, const Box& b, float margin, int coneDepth) {
   const float reach = s.radius + margin;
   if (squaredDistanceToBox(s.centre, b) > reach * reach) return false;
-  return !s.spot || coneMeetsBox(s, b, margin);
+  return !s.spot || coneMeetsBox(s, b, margin, coneDepth);
 }
 
 // Whether every point of the box is inside the support, `margin` from its boundary.

@@ -27,8 +27,9 @@ bool withinCone(const Support& s, glm::vec3 c, float rho);
 // Whether the spot's cone may meet the box grown by `margin`: the ball around the box
 // against the cone, then, where that cannot tell, the box's halves `depth` times over.
 bool coneMeetsBox(const Support& s, const Box& b, float margin, int depth = 1);
-// Whether the support may overlap the box grown by `margin`.
-bool overlaps(const Support& s, const Box& b, float margin);
+// Whether the support may overlap the box grown by `margin`; a spot's cone tested with
+// coneMeetsBox at `coneDepth`.
+bool overlaps(const Support& s, const Box& b, float margin, int coneDepth = 1);
 // Whether every point of the box is inside the support, `margin` from its boundary.
 bool contains(const Support& s, const Box& b, float margin);
 Box grow(const Box& b, float by);

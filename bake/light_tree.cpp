@@ -49,6 +49,17 @@ void mergeCones(glm::vec3& axis, float& spread, glm::vec3 axisB, float spreadB) 
   spread = float(to);
 }
 
+Item itemOf(const Light& l, int slot) {
+  Item it;
+  it.point = l.type == LightType::Directional ? -l.direction : l.position;
+  it.axis = l.direction;
+  it.intensity = l.colour * l.intensity;
+  it.invRange2 = l.range > 0.0f && std::isfinite(l.range) ? 1.0f / (l.range * l.range) : 0.0f;
+  it.outerAngle = l.type == LightType::Spot ? l.outerConeAngle : 0.0f;
+  it.slot = slot;
+  return it;
+}
+
 LightTreeNode leafNode(const Item& it) {
   LightTreeNode n;
   n.boxMin = n.boxMax = it.point;
@@ -220,17 +231,8 @@ std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights,
     if (count == 0) continue;
     Builder b;
     b.items.reserve(count);
-    for (int slot = starts[t]; slot < starts[t + 1]; ++slot) {
-      const Light& l = lights[order.scene[slot]];
-      Item it;
-      it.point = l.type == LightType::Directional ? -l.direction : l.position;
-      it.axis = l.direction;
-      it.intensity = l.colour * l.intensity;
-      it.invRange2 = l.range > 0.0f && std::isfinite(l.range) ? 1.0f / (l.range * l.range) : 0.0f;
-      it.outerAngle = l.type == LightType::Spot ? l.outerConeAngle : 0.0f;
-      it.slot = slot;
-      b.items.push_back(it);
-    }
+    for (int slot = starts[t]; slot < starts[t + 1]; ++slot)
+      b.items.push_back(itemOf(lights[order.scene[slot]], slot));
     LightTree tree;
     tree.type = types[t];
     tree.leafCount = 1;
@@ -245,6 +247,51 @@ std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights,
     trees.push_back(std::move(tree));
   }
   return trees;
+}
+
+bool refitLightTrees(std::vector<LightTree>& trees, const std::vector<Light>& lights,
+                     const std::vector<int>& changed, const TreeOptions& options) {
+  const LightOrder order = lightOrder(lights);
+  std::vector<int> slotOf(lights.size(), -1);
+  for (std::size_t slot = 0; slot < order.scene.size(); ++slot)
+    slotOf[order.scene[slot]] = int(slot);
+  // The tree and leaf of each light texture slot, from the leaves' representatives.
+  std::vector<std::pair<int, int>> leafOf(lights.size(), {-1, -1});
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    const LightTree& tree = trees[t];
+    for (int i = tree.firstLeaf(); i < int(tree.nodes.size()); ++i) {
+      const int slot = tree.nodes[std::size_t(i)].representative;
+      if (slot < 0) continue;
+      if (std::size_t(slot) >= leafOf.size()) return false;
+      leafOf[std::size_t(slot)] = {int(t), i};
+    }
+  }
+  std::vector<std::vector<char>> dirty(trees.size());
+  for (std::size_t t = 0; t < trees.size(); ++t) dirty[t].assign(trees[t].nodes.size(), 0);
+  for (int index : changed) {
+    const int slot = slotOf[std::size_t(index)];
+    const auto [t, leaf] = leafOf[std::size_t(slot)];
+    if (t < 0 || trees[std::size_t(t)].type != lights[std::size_t(index)].type) return false;
+    trees[std::size_t(t)].nodes[std::size_t(leaf)] =
+        leafNode(itemOf(lights[std::size_t(index)], slot));
+    dirty[std::size_t(t)][std::size_t(leaf)] = 1;
+  }
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    LightTree& tree = trees[t];
+    // The seed buildLightTrees gave this type's tree, so a node keeps its draw.
+    const int typeIndex = tree.type == LightType::Directional ? 0
+                          : tree.type == LightType::Point     ? 1
+                                                              : 2;
+    const std::uint64_t seed = options.seed ^ std::uint64_t(typeIndex);
+    for (int i = tree.firstLeaf() - 1; i >= 0; --i) {
+      const std::size_t l = std::size_t(2 * i + 1), r = l + 1;
+      if (!dirty[t][l] && !dirty[t][r]) continue;
+      tree.nodes[std::size_t(i)] =
+          mergeNodes(tree.nodes[l], tree.nodes[r], uniform(seed, std::uint64_t(i)));
+      dirty[t][std::size_t(i)] = 1;
+    }
+  }
+  return true;
 }
 
 }  // namespace manylight

@@ -64,6 +64,15 @@ struct TreeOptions {
 std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights,
                                        const TreeOptions& options = {});
 
+// Moves the lights `changed` (scene indices) in `trees`, built by buildLightTrees with
+// `options` for lights of the same count and types as `lights`, to their values there: each
+// one's leaf takes them and every ancestor is merged again from its children. The implicit
+// layout and every other node stay. Returns false when a changed light is in no tree, or in
+// one of another type (the trees must be built again; `trees` may then be partly refitted);
+// lights whose types changed otherwise are not detected here (bake/tree_update.h is).
+bool refitLightTrees(std::vector<LightTree>& trees, const std::vector<Light>& lights,
+                     const std::vector<int>& changed, const TreeOptions& options = {});
+
 // The paper's cluster metric of a node, with c the scene's diagonal (used for spot cones).
 double clusterMetric(const LightTreeNode& node, double c);
 

@@ -1,8 +1,8 @@
 #include "bake/linkless_octree.h"
 
 #include <algorithm>
-#include <thread>
 
+#include "bake/parallel.h"
 #include "bake/spatial_hash.h"
 
 namespace manylight {
@@ -33,11 +33,9 @@ LinklessOctree packLinklessOctree(const LightOctree& octree) {
     for (std::size_t i = 0; i < nodes.size(); ++i) keys[i] = nodes[i].cell;
     hashes[std::size_t(level)] = buildSpatialHash(keys);
   };
-  std::thread other([&] {
-    for (int level = octree.levels - 2; level >= 0; level -= 2) hashLevel(level);
+  runOnThreads(2, [&](int half) {
+    for (int level = octree.levels - 1 - half; level >= 0; level -= 2) hashLevel(level);
   });
-  for (int level = octree.levels - 1; level >= 0; level -= 2) hashLevel(level);
-  other.join();
 
   out.level.resize(std::size_t(octree.levels));
   for (int level = 0; level < octree.levels; ++level) {

@@ -50,11 +50,13 @@ DynamicOctree::DynamicOctree(const std::vector<Light>& lights, const Scene& scen
 
 void DynamicOctree::visit(int level, std::size_t index, const Visit& v) {
   const OctreeNode& n = octree_.nodes[std::size_t(level)][index];
-  if (!octree::overlaps(*v.support, {n.lo, n.hi}, margin_)) return;
+  // The build's test for this level: cones against half boxes at the deepest level only.
+  const int coneDepth = level == octree_.levels - 1 ? 1 : 0;
+  if (level > 0 && !octree::overlaps(*v.support, {n.lo, n.hi}, margin_, coneDepth)) return;
   if (n.leaf) {
     std::vector<std::uint32_t>& list = lists_[std::size_t(level)][index];
-    // Lists stay sorted and hold a light once: an add finds it present where the build's
-    // and this test's rounding differ, a removal may then miss it (an extra entry, exact).
+    // Lists stay sorted and hold a light once. The tests are the build's, so a removal finds
+    // every leaf that lists the light.
     const auto at = std::lower_bound(list.begin(), list.end(), v.slot);
     const bool present = at != list.end() && *at == v.slot;
     if (v.add && !present) list.insert(at, v.slot), ++moved_;
@@ -87,7 +89,8 @@ bool DynamicOctree::update(const std::vector<Light>& lights, const std::vector<i
     lights_[slot] = now;
   }
   repack();
-  return true;
+  // Lists that grew past the build's bound: the octree must be built again.
+  return packed_.indices.size() <= kMaxOctreeIndices;
 }
 
 void DynamicOctree::repack() {

@@ -19,9 +19,10 @@ class DynamicOctree {
   // The octree of `lights` over `scene`, built with OctreeOptions::dynamic.
   DynamicOctree(const std::vector<Light>& lights, const Scene& scene, OctreeOptions options = {});
 
-  // Moves the lights `changed` (scene indices) to their values in `lights`. Returns false,
-  // changing nothing, when a changed light cannot stay where it is in the octree's order (it
-  // gained or lost a range, or changed type): the caller builds a new one.
+  // Moves the lights `changed` (scene indices) to their values in `lights`. Returns false
+  // when the caller must build a new octree: a changed light cannot stay where it is in the
+  // octree's order (it gained or lost a range, or changed type; nothing was changed), or the
+  // lists grew past kMaxOctreeIndices (they were changed).
   bool update(const std::vector<Light>& lights, const std::vector<int>& changed);
 
   const LinklessOctree& packed() const { return packed_; }

@@ -91,8 +91,10 @@ void Renderer::moveLights(const std::vector<Light>& lights, const std::vector<in
       dynamic_ = std::make_unique<DynamicOctree>(lights, scene_, options.octree);
     octree_->replace(dynamic_->packed(), lights);
   } else if (lightcuts_) {
-    lightcuts_ = std::make_unique<LightcutsMethod>(bakeLightTrees(lights, options.trees), lights,
-                                                   gbuffer_, distance_);
+    if (!trees_ || !trees_->update(lights, changed))
+      trees_ = std::make_unique<DynamicTrees>(lights, options.trees);
+    // A new method: the trees uploaded anew, and no cut kept from before the move.
+    lightcuts_ = std::make_unique<LightcutsMethod>(trees_->packed(), lights, gbuffer_, distance_);
   }
 }
 

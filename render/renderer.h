@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bake/octree_update.h"
+#include "bake/tree_update.h"
 #include "image/image.h"
 #include "render/aov.h"
 #include "render/blend_pass.h"
@@ -101,8 +102,9 @@ class Renderer {
 
   // Lights the next frames with `lights`, the construction's lights of which those listed in
   // `changed` (scene indices) moved or changed (an animation). The octree method updates its
-  // octree in place (bake/octree_update.h; built with `options` at the first call); the
-  // lightcuts methods bake their trees again with `options` and drop their kept cuts.
+  // octree in place (bake/octree_update.h); the lightcuts methods refit their trees in place
+  // (bake/tree_update.h), upload them again and drop every kept cut. Both build theirs with
+  // `options` at the first call.
   // Throws gl::GlError.
   void moveLights(const std::vector<Light>& lights, const std::vector<int>& changed,
                   const BakeOptions& options);
@@ -125,6 +127,7 @@ class Renderer {
   std::unique_ptr<LightcutsMethod> lightcuts_;
   std::unique_ptr<OctreeMethod> octree_;
   std::unique_ptr<DynamicOctree> dynamic_;  // the octree method's, once lights move
+  std::unique_ptr<DynamicTrees> trees_;     // the lightcuts methods', once lights move
   bool distance_ = false;                   // lightcuts-distance
   double uploadMs_ = 0.0;
   gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile

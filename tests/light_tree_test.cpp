@@ -10,6 +10,7 @@
 
 #include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
+#include "bake/tree_update.h"
 #include "generators/scene_builder.h"
 
 namespace manylight {
@@ -92,6 +93,57 @@ TEST(LightTree, EveryCountGivesACompleteTreeHoldingEachLightOnce) {
       }
     }
   }
+}
+
+// Nodes compared field by field (bit for bit).
+bool sameNodes(const std::vector<LightTree>& a, const std::vector<LightTree>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t t = 0; t < a.size(); ++t) {
+    if (a[t].nodes.size() != b[t].nodes.size()) return false;
+    for (std::size_t i = 0; i < a[t].nodes.size(); ++i) {
+      const LightTreeNode &x = a[t].nodes[i], &y = b[t].nodes[i];
+      if (x.boxMin != y.boxMin || x.boxMax != y.boxMax || x.intensity != y.intensity ||
+          x.representative != y.representative || x.invRange2 != y.invRange2 ||
+          x.invRange2Max != y.invRange2Max || x.axis != y.axis || x.spread != y.spread ||
+          x.outerAngle != y.outerAngle)
+        return false;
+    }
+  }
+  return true;
+}
+
+TEST(LightTree, RefitsInPlaceAndBackToTheBuild) {
+  std::vector<Light> lights = scatteredLights(3000, true, 5, {10.0f, 4.0f, 10.0f});
+  const std::vector<LightTree> built = buildLightTrees(lights);
+  std::vector<LightTree> trees = built;
+  const std::vector<Light> rest = lights;
+  std::vector<int> changed;
+  for (int i = 0; i < 3000; i += 37) {
+    changed.push_back(i);
+    lights[std::size_t(i)].position += glm::vec3(0.5f, -0.25f, 1.0f);
+    lights[std::size_t(i)].intensity *= 2.0f;
+  }
+  ASSERT_TRUE(refitLightTrees(trees, lights, changed));
+  EXPECT_FALSE(sameNodes(trees, built));
+  // Every node's box holds its lights, moved: the root's holds every position.
+  for (const LightTree& tree : trees) {
+    const LightTreeNode& root = tree.nodes[0];
+    for (const Light& l : lights) {
+      if (l.type != tree.type || l.type == LightType::Directional) continue;
+      EXPECT_TRUE(glm::all(glm::lessThanEqual(root.boxMin, l.position)) &&
+                  glm::all(glm::lessThanEqual(l.position, root.boxMax)));
+    }
+  }
+  // Moved back: the trees the build gave, bit for bit.
+  ASSERT_TRUE(refitLightTrees(trees, rest, changed));
+  EXPECT_TRUE(sameNodes(trees, built));
+  // A light that changes type is refused (DynamicTrees keeps the types the trees were built
+  // for; refitLightTrees requires them unchanged).
+  DynamicTrees dynamic(rest, {});
+  EXPECT_TRUE(dynamic.update(lights, changed));
+  std::vector<Light> retyped = rest;
+  retyped[1].type = retyped[1].type == LightType::Point ? LightType::Spot : LightType::Point;
+  EXPECT_FALSE(dynamic.update(retyped, {1}));
 }
 
 TEST(LightTree, NoLightsGiveNoTrees) { EXPECT_TRUE(buildLightTrees({}).empty()); }

@@ -294,5 +294,43 @@ TEST_F(Lightcuts, KeptCutsHoldTheTotalRuleFrameByFrame) {
   for (int i = 1; i < 8; ++i) EXPECT_GT(out.cutsKept[std::size_t(i)], out.cutsMade[std::size_t(i)]);
 }
 
+// Moved lights (Renderer::moveLights: the trees refitted in place, the cuts found anew) keep
+// the total rule's guarantee against the reference of the moved lights.
+TEST(LightcutsMoving, RefittedTreesHoldTheTotalRule) {
+  constexpr double kEpsilon = 0.02;
+  Scene scene = room(false);
+  scene.lights = layoutLights(LightLayout::Mixed, 2000, 7);
+  RenderRequest request;
+  request.width = kWidth;
+  request.height = kHeight;
+  request.method = Method::Lightcuts;
+  request.lightcuts.mode = ErrorMode::Total;
+  request.lightcuts.error = float(kEpsilon);
+  request.lightcuts.maxCut = kMaxCut;
+  PreparedRender p(scene, request);
+  std::vector<Light> lights = scene.lights;
+  for (int frame = 0; frame < 2; ++frame) {
+    std::vector<int> changed;
+    for (int i = frame; i < int(lights.size()); i += 10) {
+      changed.push_back(i);
+      lights[std::size_t(i)].position += glm::vec3(0.3f, 0.1f, -0.2f);
+      lights[std::size_t(i)].intensity *= 1.5f;
+    }
+    p.renderer->moveLights(lights, changed, {});
+    FrameStats frame_;
+    const Image image =
+        p.renderer->render(makeView(p.camera, kWidth, kHeight), p.settings, &frame_);
+    Scene moved = room(false);
+    moved.lights = lights;
+    RenderRequest reference;
+    reference.width = kWidth;
+    reference.height = kHeight;
+    const Errors e =
+        compareImages(image, renderScene(moved, reference).image, frame_.cuts, kEpsilon);
+    EXPECT_EQ(e.failing, 0) << "frame " << frame << ": worst " << e.worst;
+    EXPECT_GT(e.compared, kWidth * kHeight / 2);
+  }
+}
+
 }  // namespace
 }  // namespace manylight::testing
