@@ -7,25 +7,6 @@
 
 namespace manylight::baked {
 
-namespace {
-
-template <typename T>
-void putFloats(Writer& w, const T& v) {  // glm vectors and matrices: tightly packed floats
-  w.put(v);
-}
-
-template <typename T>
-T getFinite(Reader& r, const char* what) {
-  const T v = r.get<T>();
-  const float* f = reinterpret_cast<const float*>(&v);
-  for (std::size_t i = 0; i < sizeof(T) / sizeof(float); ++i) {
-    if (!std::isfinite(f[i])) r.fail(std::string(what) + " is not finite");
-  }
-  return v;
-}
-
-}  // namespace
-
 void writeChain(Writer& w, const std::vector<AnimatedNode>& chain) {
   w.put(std::uint32_t(chain.size()));
   for (const AnimatedNode& n : chain) {

@@ -89,9 +89,8 @@ BakedScene bakeScene(Scene scene, const TreeOptions& trees, const OctreeOptions&
   b.trees = trees;
   b.hasTrees = !scene.lights.empty();
   if (b.hasTrees) b.packed = packLightTrees(buildLightTrees(scene.lights, trees), trees.nodeColour);
-  b.hasOctree = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
-    return l.type != LightType::Directional && l.range > 0.0f;
-  });
+  b.hasOctree = std::any_of(scene.lights.begin(), scene.lights.end(),
+                            [](const Light& l) { return isRanged(l); });
   if (b.hasOctree) b.octree = packLinklessOctree(buildLightOctree(scene.lights, scene, octree));
   b.scene = std::move(scene);
   return b;

@@ -10,11 +10,6 @@
 namespace manylight::baked {
 namespace {
 
-template <typename T>
-void putFloats(Writer& w, const T& v) {  // glm vectors and matrices: tightly packed floats
-  w.put(v);
-}
-
 void writeTrees(Writer& w, const BakedScene& b) {
   const PackedTrees& p = b.packed;
   for (int t = 0; t < 3; ++t) w.put(std::int32_t(p.base[t]));
@@ -118,14 +113,6 @@ bool finite(const float* v, std::size_t n) {
     if (!std::isfinite(v[i])) return false;
   }
   return true;
-}
-
-template <typename T>
-T getFinite(Reader& r, const char* what) {
-  const T v = r.get<T>();
-  if (!finite(reinterpret_cast<const float*>(&v), sizeof(T) / sizeof(float)))
-    r.fail(std::string(what) + " is not finite");
-  return v;
 }
 
 void readScene(Reader& r, BakedScene& b) {

@@ -2,6 +2,7 @@
 // The sections of a baked file (docs/baked-format.md): byte writer and checked reader, each
 // section written, all of them read. Internal to bake/: baked_file.cpp adds the header, the
 // section table and the checksum around them.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -95,6 +96,24 @@ class Reader {
   std::size_t at_ = 0;
   std::string where_;
 };
+
+// glm vectors and matrices: tightly packed floats.
+template <typename T>
+void putFloats(Writer& w, const T& v) {
+  w.put(v);
+}
+
+// A glm vector or matrix (or a float) whose every component must be finite.
+template <typename T>
+T getFinite(Reader& r, const char* what) {
+  const T v = r.get<T>();
+  float f[sizeof(T) / sizeof(float)];
+  std::memcpy(f, &v, sizeof f);
+  for (float x : f) {
+    if (!std::isfinite(x)) r.fail(std::string(what) + " is not finite");
+  }
+  return v;
+}
 
 // The sections `baked` needs, in file order: (tag, bytes).
 std::vector<std::pair<std::uint32_t, std::string>> writeSections(const BakedScene& baked);

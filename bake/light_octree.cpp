@@ -255,7 +255,7 @@ float classify(const std::vector<Light>& lights, const LightOrder& order, const 
   bool first = true;
   for (std::size_t slot = 0; slot < order.scene.size(); ++slot) {
     const Light& light = lights[order.scene[slot]];
-    if (light.type == LightType::Directional || !(light.range > 0.0f)) {
+    if (!isRanged(light)) {
       o.global.push_back(std::uint32_t(slot));
       continue;
     }
@@ -322,7 +322,7 @@ std::vector<int> octreeOrder(const std::vector<Light>& lights) {
   Bounds box;
   for (int i : lightOrder(lights).scene) {
     const Light& l = lights[std::size_t(i)];
-    if (l.type == LightType::Directional || !(l.range > 0.0f)) {
+    if (!isRanged(l)) {
       order.push_back(i);
     } else {
       box.add(l.position);
@@ -333,7 +333,7 @@ std::vector<int> octreeOrder(const std::vector<Light>& lights) {
   const glm::vec3 scale = 2097151.0f / glm::max(box.max - box.min, glm::vec3(1e-30f));
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const Light& l = lights[i];
-    if (l.type == LightType::Directional || !(l.range > 0.0f)) continue;
+    if (!isRanged(l)) continue;
     const glm::vec3 q =
         glm::clamp((l.position - box.min) * scale, glm::vec3(0.0f), glm::vec3(2097151.0f));
     coded.push_back({spread(std::uint64_t(q.x)) | spread(std::uint64_t(q.y)) << 1 |
@@ -351,8 +351,7 @@ std::vector<int> octreeOrder(const std::vector<Light>& lights) {
 float octreeLeafEdge(const std::vector<Light>& lights) {
   std::vector<float> radii;
   for (const Light& l : lights) {
-    if (l.type != LightType::Directional && l.range > 0.0f)
-      radii.push_back(octree::supportOf(l).radius);
+    if (isRanged(l)) radii.push_back(octree::supportOf(l).radius);
   }
   if (radii.empty()) return 0.0f;
   std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
@@ -442,7 +441,7 @@ OctreeList octreeListAt(const LightOctree& o, glm::vec3 p) {
 }
 
 bool lightReaches(const Light& light, glm::vec3 p) {
-  if (light.type == LightType::Directional || !(light.range > 0.0f)) return true;
+  if (!isRanged(light)) return true;
   const glm::dvec3 v = glm::dvec3(p) - glm::dvec3(light.position);
   const double d = glm::length(v);
   if (d >= double(light.range)) return false;

@@ -6,12 +6,6 @@
 
 namespace manylight {
 
-namespace {
-
-bool ranged(const Light& l) { return l.type != LightType::Directional && l.range > 0.0f; }
-
-}  // namespace
-
 struct DynamicOctree::Visit {
   const octree::Support* support;
   std::uint32_t slot;
@@ -31,7 +25,8 @@ DynamicOctree::DynamicOctree(const std::vector<Light>& lights, const Scene& scen
     lights_.push_back(lights[std::size_t(sceneOfSlot_[slot])]);
   }
   inOctree_.assign(lights_.size(), 0);
-  for (std::size_t slot = 0; slot < lights_.size(); ++slot) inOctree_[slot] = ranged(lights_[slot]);
+  for (std::size_t slot = 0; slot < lights_.size(); ++slot)
+    inOctree_[slot] = isRanged(lights_[slot]);
   for (std::uint32_t slot : octree_.global) inOctree_[slot] = 0;
   lists_.resize(std::size_t(octree_.levels));
   slot_.resize(std::size_t(octree_.levels));
@@ -74,7 +69,7 @@ bool DynamicOctree::update(const std::vector<Light>& lights, const std::vector<i
   for (int index : changed) {
     const Light& now = lights[std::size_t(index)];
     const Light& before = lights_[std::size_t(slotOfScene_[std::size_t(index)])];
-    if (now.type != before.type || ranged(now) != ranged(before)) return false;
+    if (now.type != before.type || isRanged(now) != isRanged(before)) return false;
   }
   moved_ = 0;
   for (int index : changed) {

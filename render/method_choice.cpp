@@ -42,7 +42,7 @@ MethodChoice chooseMethod(const Scene& scene, const std::vector<Light>& lights, 
     return c;
   }
   std::size_t ranged = 0;
-  for (const Light& l : lights) ranged += l.type != LightType::Directional && l.range > 0.0f;
+  for (const Light& l : lights) ranged += isRanged(l);
   const double global = double(lights.size() - ranged);
   if (ranged > 0 && global <= kAutoOctreeEntries) {
     if (!baked) {

@@ -117,7 +117,7 @@ OctreeFrameStats OctreeMethod::frameStats(const GBuffer& gbuffer, bool bruteForc
       const std::uint32_t at = k < octree_.globalCount ? k : list.first + (k - octree_.globalCount);
       const Light& light = lights_[octree_.indices[at]];
       const glm::vec3 d = light.position - p;
-      const bool ranged = light.type != LightType::Directional && light.range > 0.0f;
+      const bool ranged = isRanged(light);
       // The shader's range test passes where the window is non-zero.
       const bool inRange = !ranged || glm::dot(d, d) < light.range * light.range;
       evaluated += inRange;

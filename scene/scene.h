@@ -26,6 +26,10 @@ struct Light {
   float outerConeAngle = 0.785398163397448f;  // π/4
 };
 
+// Whether the light has a range (a point or spot light with range > 0): its contribution is
+// zero from that distance on (scene/shading_model.h's window).
+inline bool isRanged(const Light& l) { return l.type != LightType::Directional && l.range > 0.0f; }
+
 struct Texture {
   int width = 0;
   int height = 0;

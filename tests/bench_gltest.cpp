@@ -16,13 +16,8 @@ namespace manylight::testing {
 namespace {
 
 const Scene& room() {
-  static const Scene scene = [] {
-    RoomOptions o;
-    o.lightCount = 1;
-    o.textured = false;
-    return loadGltf(roomScene(o, "bench-room.gltf"));
-  }();
-  return scene;
+  context();
+  return untexturedRoom();
 }
 
 TEST(Bench, SweepReferenceRowSubsetLightsExactlyItsRows) {
@@ -224,9 +219,7 @@ TEST(Bench, ReferenceEstimateFollowsTheMeasuredThroughput) {
 }
 
 TEST(Bench, AutoChoosesByTheCostModel) {
-  RoomOptions o;
-  o.lightCount = 1;
-  const Scene scene = loadGltf(roomScene(o, "auto-room.gltf"));
+  const Scene& scene = room();
   // 1,000 lights × 256×256 = 6.6e7 light evaluations: the reference.
   std::vector<Light> few(1000);
   MethodChoice c = chooseMethod(scene, few, 256, 256, {});

@@ -88,15 +88,7 @@ TEST(LightOctree, ListsHoldEveryLightThatReaches) {
 namespace manylight {
 namespace {
 
-const Scene& room() {
-  static const Scene scene = [] {
-    RoomOptions o;
-    o.lightCount = 1;
-    o.textured = false;
-    return loadGltf(testing::roomScene(o, "octree-cpu-room.gltf"));
-  }();
-  return scene;
-}
+const Scene& room() { return testing::untexturedRoom(); }
 
 // `count` points on the room's triangles, uniformly by area.
 std::vector<glm::vec3> surfacePoints(const Scene& scene, int count, std::uint32_t seed) {

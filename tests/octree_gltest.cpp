@@ -26,15 +26,8 @@ constexpr int kWidth = 96, kHeight = 72;
 constexpr double kRelative = 1e-5;
 
 const Scene& room() {
-  static const Scene* r = nullptr;
-  if (!r) {
-    context();
-    RoomOptions o;
-    o.lightCount = 1;
-    o.textured = false;
-    r = new Scene(loadGltf(roomScene(o, "octree-room.gltf")));
-  }
-  return *r;
+  context();
+  return untexturedRoom();
 }
 
 struct Comparison {

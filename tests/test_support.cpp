@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <fstream>
 
+#include "scene/gltf_loader.h"
+
 namespace manylight::testing {
 
 namespace fs = std::filesystem;
@@ -37,6 +39,16 @@ std::string roomScene(const RoomOptions& options, const std::string& name) {
   const std::string path = (testFolder() / name).string();
   writeRoomScene(path, options);
   return path;
+}
+
+const Scene& untexturedRoom() {
+  static const Scene scene = [] {
+    RoomOptions o;
+    o.lightCount = 1;
+    o.textured = false;
+    return loadGltf(roomScene(o, "untextured-room.gltf"));
+  }();
+  return scene;
 }
 
 fs::path artefactFolder() {

@@ -18,6 +18,10 @@ std::string writeFile(const std::string& name, const std::string& text);
 // Writes the room scene with `options` into the test folder and returns its path.
 std::string roomScene(const RoomOptions& options, const std::string& name = "room.gltf");
 
+// The room scene with one light and no textures, loaded once per process. (GL tests open
+// their context first: its driver is loaded by dlopen, which waits on the image module's.)
+const Scene& untexturedRoom();
+
 // Writes, in the test folder, NAME.gltf and NAME.bin: a camera on node 1, child of node 0
 // (translated by (1, 0, 0)); animation 0 moves node 1 from z = 5 to 10 to 15 at t = 0,
 // `secondTime`, 2 (`interpolation`) and turns it 90° about +Y at the second key (STEP).

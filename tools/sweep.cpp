@@ -19,7 +19,7 @@ namespace {
 bool measured(const SweepVariant& v, const std::vector<Light>& lights) {
   if (v.method != Method::Octree) return true;
   std::size_t ranged = 0;
-  for (const Light& l : lights) ranged += l.type != LightType::Directional && l.range > 0.0f;
+  for (const Light& l : lights) ranged += isRanged(l);
   return 2 * ranged >= lights.size();
 }
 
