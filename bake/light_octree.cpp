@@ -9,6 +9,7 @@
 
 #include "bake/light_pack.h"
 #include "bake/light_support.h"
+#include "bake/octree_lights.h"
 #include "bake/octree_surfaces.h"
 #include "bake/parallel.h"
 
@@ -27,7 +28,6 @@ using octree::coneMeetsBox;
 using octree::contains;
 using octree::grow;
 using octree::overlaps;
-using octree::sphereBox;
 using octree::Support;
 using octree::supportOf;
 
@@ -246,54 +246,6 @@ void buildTasks(Build& top, Part& main, int threads) {
   }
 }
 
-// Sorts the ranged lights into the octree's, the global list and the unreached, and sets
-// the octree's domain: the geometry bounds met by the supports. Returns the margin.
-float classify(const std::vector<Light>& lights, const LightOrder& order, const Bounds& geometry,
-               bool dynamic, std::vector<Support>& supports, std::vector<std::uint32_t>& inOctree,
-               LightOctree& o, Box& domain) {
-  Box scene{glm::vec3(0.0f), glm::vec3(0.0f)};
-  bool first = true;
-  for (std::size_t slot = 0; slot < order.scene.size(); ++slot) {
-    const Light& light = lights[order.scene[slot]];
-    if (!isRanged(light)) {
-      o.global.push_back(std::uint32_t(slot));
-      continue;
-    }
-    supports[slot] = supportOf(light);
-    const Box b = sphereBox(supports[slot]);
-    scene = first ? b : Box{glm::min(scene.lo, b.lo), glm::max(scene.hi, b.hi)};
-    first = false;
-  }
-  if (!geometry.empty) scene = {geometry.min, geometry.max};
-  const float scale = std::max(
-      {glm::length(scene.lo), glm::length(scene.hi), glm::length(scene.hi - scene.lo), 1e-3f});
-  const float margin = 1e-5f * scale;
-  bool any = false;
-  domain = scene;
-  for (std::size_t slot = 0; slot < order.scene.size(); ++slot) {
-    const Support& s = supports[slot];
-    if (!(s.range > 0.0f)) continue;
-    const int index = order.scene[slot];
-    if (dynamic && !geometry.empty && !contains(s, grow(scene, margin), margin)) {
-      inOctree.push_back(std::uint32_t(slot));  // its lists are found wherever it moves
-    } else if (!overlaps(s, grow(scene, margin), margin)) {
-      o.unreached.push_back(index);
-    } else if (!geometry.empty && contains(s, grow(scene, margin), margin)) {
-      o.wholeScene.push_back(index);
-      o.global.push_back(std::uint32_t(slot));
-    } else {
-      inOctree.push_back(std::uint32_t(slot));
-      const Box b = sphereBox(s);
-      const Box met{glm::max(b.lo, scene.lo), glm::min(b.hi, scene.hi)};
-      domain = any ? Box{glm::min(domain.lo, met.lo), glm::max(domain.hi, met.hi)} : met;
-      any = true;
-    }
-  }
-  std::sort(o.global.begin(), o.global.end());
-  if (dynamic && !geometry.empty) domain = scene;
-  return margin;
-}
-
 // Sets the levels, leaf edge and origin for a leaf edge of at least `leafEdge`.
 void shape(LightOctree& o, const Box& domain, float margin, float leafEdge) {
   const glm::vec3 size = domain.hi - domain.lo;
@@ -304,58 +256,17 @@ void shape(LightOctree& o, const Box& domain, float margin, float leafEdge) {
   o.origin = domain.lo - glm::vec3(2.0f * margin);
 }
 
-// Spreads the low 21 bits of v to every third bit.
-std::uint64_t spread(std::uint64_t v) {
-  v &= 0x1FFFFF;
-  v = (v | v << 32) & 0x1F00000000FFFFull;
-  v = (v | v << 16) & 0x1F0000FF0000FFull;
-  v = (v | v << 8) & 0x100F00F00F00F00Full;
-  v = (v | v << 4) & 0x10C30C30C30C30C3ull;
-  v = (v | v << 2) & 0x1249249249249249ull;
-  return v;
-}
-
-// Lights without a range in lightOrder's order, then the ranged ones by the Morton code of
-// their positions over the box that holds them.
-std::vector<int> octreeOrder(const std::vector<Light>& lights) {
-  std::vector<int> order;
-  Bounds box;
-  for (int i : lightOrder(lights).scene) {
-    const Light& l = lights[std::size_t(i)];
-    if (!isRanged(l)) {
-      order.push_back(i);
-    } else {
-      box.add(l.position);
-    }
-  }
-  const std::size_t unranged = order.size();
-  std::vector<std::pair<std::uint64_t, int>> coded;
-  const glm::vec3 scale = 2097151.0f / glm::max(box.max - box.min, glm::vec3(1e-30f));
-  for (std::size_t i = 0; i < lights.size(); ++i) {
-    const Light& l = lights[i];
-    if (!isRanged(l)) continue;
-    const glm::vec3 q =
-        glm::clamp((l.position - box.min) * scale, glm::vec3(0.0f), glm::vec3(2097151.0f));
-    coded.push_back({spread(std::uint64_t(q.x)) | spread(std::uint64_t(q.y)) << 1 |
-                         spread(std::uint64_t(q.z)) << 2,
-                     int(i)});
-  }
-  std::sort(coded.begin(), coded.end());
-  order.resize(unranged + coded.size());
-  for (std::size_t k = 0; k < coded.size(); ++k) order[unranged + k] = coded[k].second;
-  return order;
-}
-
 }  // namespace
 
 float octreeLeafEdge(const std::vector<Light>& lights) {
-  std::vector<float> radii;
+  std::vector<Support> supports;
+  std::vector<std::uint32_t> slots;
   for (const Light& l : lights) {
-    if (isRanged(l)) radii.push_back(octree::supportOf(l).radius);
+    if (!isRanged(l)) continue;
+    slots.push_back(std::uint32_t(supports.size()));
+    supports.push_back(supportOf(l));
   }
-  if (radii.empty()) return 0.0f;
-  std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
-  return 0.25f * radii[radii.size() / 2];
+  return octree::quarterMedianRadius(supports, slots);
 }
 
 std::size_t LightOctree::nodeCount() const {
@@ -364,56 +275,75 @@ std::size_t LightOctree::nodeCount() const {
   return n;
 }
 
+namespace {
+
+// Builds `o`'s nodes and lists at its shape, refined only in `surfaces` (null: everywhere);
+// false, with `o` unchanged, where its lists would exceed `budget` entries.
+bool buildShape(LightOctree& o, const octree::Classified& lights, const SurfaceCells* surfaces,
+                std::size_t budget, bool dynamic, int threads) {
+  std::atomic<std::size_t> entries{0};
+  std::atomic<bool> overflow{false};
+  Build top(o, lights.supports, lights.margin, entries, overflow);
+  // Tasks a few levels down, so that geometry in one corner of the root still makes many.
+  top.taskLevel = o.levels > 5 ? 4 : o.levels > 3 ? 2 : -1;
+  top.keepEmpty = dynamic;
+  top.threads = threads;
+  top.budget = budget;
+  top.surfaces = surfaces;
+  Part main;
+  main.nodes.resize(std::size_t(o.levels));
+  OctreeNode root;
+  const Box rootBox = cellBox(o, 0, glm::uvec3(0));
+  root.lo = rootBox.lo;
+  root.hi = rootBox.hi;
+  const SurfaceCell* geometry = surfaces ? surfaces->find(0, glm::uvec3(0)) : nullptr;
+  if (geometry) root.lo = geometry->lo, root.hi = geometry->hi;
+  main.nodes[0].push_back(root);
+  if (!surfaces || geometry) top.node(main, 0, 0, lights.inOctree);
+  if (top.taskLevel >= 0) buildTasks(top, main, threads);
+  if (overflow) return false;
+  o.nodes = std::move(main.nodes);
+  o.indices = std::move(main.indices);
+  return true;
+}
+
+}  // namespace
+
 LightOctree buildLightOctree(const std::vector<Light>& lights, const Scene& scene,
                              const OctreeOptions& options) {
   LightOctree o;
   const Bounds geometry = scene.bounds();
-  LightOrder order;
-  order.scene = octreeOrder(lights);
-  o.order = order.scene;
-  std::vector<Support> supports(order.scene.size());
-  std::vector<std::uint32_t> inOctree;
-  Box domain;
-  const float margin =
-      classify(lights, order, geometry, options.dynamic, supports, inOctree, o, domain);
-  std::vector<Light> ranged;
-  for (std::uint32_t slot : inOctree) ranged.push_back(lights[order.scene[slot]]);
-  o.margin = margin;
-  float leafEdge = options.leafEdge > 0.0f ? options.leafEdge : octreeLeafEdge(ranged);
-  if (!(leafEdge > 0.0f)) leafEdge = 1.0f;
   const int threads =
       options.threads > 0 ? options.threads : std::max(1, int(std::thread::hardware_concurrency()));
+  o.order = octree::octreeOrder(lights, threads);
+  const octree::Classified c = octree::classify(lights, geometry, options.dynamic, threads, o);
+  o.margin = c.margin;
+  float leafEdge = options.leafEdge > 0.0f ? options.leafEdge
+                                           : octree::quarterMedianRadius(c.supports, c.inOctree);
+  if (!(leafEdge > 0.0f)) leafEdge = 1.0f;
+  const std::size_t budget = std::min(
+      kMaxOctreeIndices, std::max(kOctreeEntriesPerLight * c.inOctree.size(), kMinOctreeBudget));
+  SurfaceCells surfaces;
   for (;; leafEdge *= 2.0f) {
-    shape(o, domain, margin, leafEdge);
-    std::atomic<std::size_t> entries{0};
-    std::atomic<bool> overflow{false};
-    Build top(o, supports, margin, entries, overflow);
-    // Tasks a few levels down, so that geometry in one corner of the root still makes many.
-    top.taskLevel = o.levels > 5 ? 4 : o.levels > 3 ? 2 : -1;
-    top.keepEmpty = options.dynamic;
-    top.threads = threads;
-    top.budget = std::min(kMaxOctreeIndices,
-                          std::max(kOctreeEntriesPerLight * inOctree.size(), kMinOctreeBudget));
-    SurfaceCells surfaces;
+    const int finerLevels = o.levels;
+    const float finerEdge = o.leafEdge;
+    shape(o, c.domain, c.margin, leafEdge);
     if (!geometry.empty) {
-      surfaces = surfaceCells(scene, o.origin, o.leafEdge, o.levels, margin);
-      top.surfaces = &surfaces;
+      // A shape one level shallower over the same root has the cells of the one before
+      // without its deepest level (their boxes as tight or tighter than found afresh).
+      if (!surfaces.levels.empty() && o.levels + 1 == finerLevels &&
+          o.leafEdge == 2.0f * finerEdge) {
+        surfaces.levels.pop_back();
+      } else {
+        surfaces = surfaceCells(scene, o.origin, o.leafEdge, o.levels, c.margin);
+      }
+      // A shape whose lists plainly exceed the budget is not tried (one level always fits).
+      if (o.levels > 1 &&
+          octree::estimatedEntries(o, surfaces, c) > kProjectedOverBudget * double(budget))
+        continue;
     }
-    Part main;
-    main.nodes.resize(std::size_t(o.levels));
-    OctreeNode root;
-    const Box rootBox = cellBox(o, 0, glm::uvec3(0));
-    root.lo = rootBox.lo;
-    root.hi = rootBox.hi;
-    const SurfaceCell* geometry = top.surfaces ? top.surfaces->find(0, glm::uvec3(0)) : nullptr;
-    if (geometry) root.lo = geometry->lo, root.hi = geometry->hi;
-    main.nodes[0].push_back(root);
-    if (!top.surfaces || geometry) top.node(main, 0, 0, inOctree);
-    if (top.taskLevel >= 0) buildTasks(top, main, threads);
-    if (overflow) continue;
-    o.nodes = std::move(main.nodes);
-    o.indices = std::move(main.indices);
-    break;
+    if (buildShape(o, c, geometry.empty ? nullptr : &surfaces, budget, options.dynamic, threads))
+      break;
   }
   for (const auto& level : o.nodes) {
     for (const OctreeNode& n : level) {

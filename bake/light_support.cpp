@@ -100,6 +100,10 @@ bool overlaps(const Support& s, const Box& b, float margin, int coneDepth) {
 bool contains(const Support& s, const Box& b, float margin) {
   const float inner = s.range - margin;
   if (inner <= 0.0f) return false;
+  // Two opposite corners are the box's diagonal apart, so a ball holds both only if its
+  // diameter exceeds the diagonal.
+  const glm::vec3 size = b.hi - b.lo;
+  if (glm::dot(size, size) >= 4.0f * inner * inner) return false;
   for (int corner = 0; corner < 8; ++corner) {
     const glm::vec3 c((corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y,
                       (corner & 4) ? b.hi.z : b.lo.z);

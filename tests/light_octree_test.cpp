@@ -10,6 +10,7 @@
 
 #include "bake/light_pack.h"
 #include "bake/linkless_octree.h"
+#include "bake/octree_lights.h"
 #include "bake/octree_update.h"
 #include "generators/light_layouts.h"
 #include "scene/gltf_loader.h"
@@ -188,6 +189,67 @@ TEST(DynamicOctree, MovedLightsAreListedWhereTheyReachAndNowhereTwice) {
   // A light that loses its range cannot stay in the octree.
   lights[0].range = 0.0f;
   EXPECT_FALSE(dynamic.update(lights, {0}));
+}
+
+
+// The order, the classification and the sorting of lists into children run on several
+// threads from 32,768 lights on: the octree does not depend on how many.
+TEST(LightOctree, IsTheSameOnAnyNumberOfThreads) {
+  std::vector<Light> lights = layoutLights(LightLayout::StreetRanged, 40000, 5);
+  lights[17].range = 0.0f;  // one for the global list
+  OctreeOptions one, three;
+  one.threads = 1;
+  three.threads = 3;
+  const LightOctree a = buildLightOctree(lights, room(), one);
+  const LightOctree b = buildLightOctree(lights, room(), three);
+  EXPECT_EQ(a.order, b.order);
+  EXPECT_EQ(a.global, b.global);
+  ASSERT_EQ(a.global.size(), 1u);
+  EXPECT_EQ(a.order[a.global[0]], 17);
+  EXPECT_EQ(a.indices, b.indices);
+  ASSERT_EQ(a.levels, b.levels);
+  for (int level = 0; level < a.levels; ++level) {
+    ASSERT_EQ(a.nodes[level].size(), b.nodes[level].size());
+    for (std::size_t k = 0; k < a.nodes[level].size(); ++k) {
+      EXPECT_EQ(a.nodes[level][k].childMask, b.nodes[level][k].childMask);
+      EXPECT_EQ(a.nodes[level][k].first, b.nodes[level][k].first);
+      EXPECT_EQ(a.nodes[level][k].count, b.nodes[level][k].count);
+    }
+  }
+}
+
+// A leaf edge whose lists would plainly exceed the budget is passed over for a coarser one
+// (their entries are estimated before a build); what is built still lists every light
+// where it reaches.
+TEST(LightOctree, ALeafEdgeTooFineForTheBudgetGivesWayToACoarserOne) {
+  const std::vector<Light> lights = layoutLights(LightLayout::StreetRanged, 4096, 7);
+  OctreeOptions fine;
+  fine.leafEdge = 0.05f * octreeLeafEdge(lights);
+  const LightOctree o = buildLightOctree(lights, room(), fine);
+  EXPECT_GE(o.leafEdge, 4.0f * fine.leafEdge);
+  EXPECT_LE(o.indices.size(), kMinOctreeBudget);
+  EXPECT_GT(o.indices.size(), kMinOctreeBudget / 8);
+  const Miss m = missesAt(lights, packLinklessOctree(o), surfacePoints(room(), 5000, 8));
+  EXPECT_EQ(m.missed, 0);
+  EXPECT_EQ(m.doubled, 0);
+}
+
+
+// Where every cell a light meets is split to the deepest level, the estimate from a
+// thousand lights is close to the entries the build writes.
+TEST(LightOctree, EstimatesItsListEntriesBeforeBuilding) {
+  for (LightLayout layout : {LightLayout::StreetRanged, LightLayout::UniformRanged}) {
+    const std::vector<Light> lights = layoutLights(layout, 20000, 3);
+    const LightOctree built = buildLightOctree(lights, room());
+    LightOctree o;
+    o.order = built.order;
+    const octree::Classified c = octree::classify(lights, room().bounds(), false, 1, o);
+    o.origin = built.origin, o.leafEdge = built.leafEdge, o.levels = built.levels;
+    o.margin = c.margin;
+    const SurfaceCells surfaces = surfaceCells(room(), o.origin, o.leafEdge, o.levels, o.margin);
+    const double estimate = octree::estimatedEntries(o, surfaces, c);
+    EXPECT_NEAR(estimate / double(built.indices.size()), 1.0, 0.1) << int(layout);
+  }
 }
 
 }  // namespace
