@@ -191,7 +191,6 @@ TEST(DynamicOctree, MovedLightsAreListedWhereTheyReachAndNowhereTwice) {
   EXPECT_FALSE(dynamic.update(lights, {0}));
 }
 
-
 // The order, the classification and the sorting of lists into children run on several
 // threads from 32,768 lights on: the octree does not depend on how many.
 TEST(LightOctree, IsTheSameOnAnyNumberOfThreads) {
@@ -233,7 +232,6 @@ TEST(LightOctree, ALeafEdgeTooFineForTheBudgetGivesWayToACoarserOne) {
   EXPECT_EQ(m.missed, 0);
   EXPECT_EQ(m.doubled, 0);
 }
-
 
 // Where every cell a light meets is split to the deepest level, the estimate from a
 // thousand lights is close to the entries the build writes.
