@@ -59,6 +59,8 @@ bool sizeFitsContext(int width, int height);
 nlohmann::json nodeColourStats(const NodeColourCoder& c);
 // The octree method's figures for --stats: its octree's, and the frame's per-pixel lists.
 nlohmann::json octreeStats(const OctreeSummary& o, const OctreeFrameStats& frame);
+// A frame's indirect light figures for --stats.
+nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectStats& s);
 // One line naming the lights an octree holds at every pixel because their support holds
 // the whole scene, or "" when there are none.
 std::string wholeSceneNote(const std::string& scene, const OctreeSummary& o);
@@ -104,8 +106,15 @@ struct MethodArgs {
   int cutTile = LightcutsSettings{}.tileSize;
   CLI::Option* methodOption = nullptr;  // --method, to tell a default from a choice
 
+  std::string indirect = "none";
+  int rsmLights = IndirectSettings{}.rsmLights, rsmSize = IndirectSettings{}.rsmSize;
+
   // Throws Error for an unknown method.
   Method parsed() const { return parseMethod(method); }
+  // The indirect light these options ask for.
+  IndirectSettings indirectSettings() const {
+    return {parseIndirect(indirect), rsmLights, rsmSize};
+  }
   // The lightcuts settings these options give (trees aside).
   LightcutsSettings lightcuts() const;
 };

@@ -171,6 +171,19 @@ void addMethodOptions(CLI::App* app, MethodArgs& a) {
                   "them (cuts/tile_cuts.h); 1: a cut per pixel")
       ->capture_default_str()
       ->check(CLI::IsMember({1, 4, 8, 16, 32, 64}));
+  app->add_option("--indirect", a.indirect,
+                  "One bounce of diffuse indirect light from reflective shadow maps: none, or "
+                  "exact (every map texel at every pixel; see docs/indirect.md)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "exact"}));
+  app->add_option("--rsm-lights", a.rsmLights,
+                  "--indirect: the spot and directional lights sending the most flux into the "
+                  "view that get a reflective shadow map")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  app->add_option("--rsm-size", a.rsmSize, "--indirect: a reflective shadow map's width and height")
+      ->capture_default_str()
+      ->check(CLI::IsMember({16, 32, 64, 128, 256, 512}));
 }
 
 LightcutsSettings MethodArgs::lightcuts() const {
@@ -200,6 +213,19 @@ nlohmann::json octreeStats(const OctreeSummary& o, const OctreeFrameStats& frame
           {"light_evaluations_per_pixel", frame.lightEvaluations},
           {"lights_reaching_per_pixel", frame.lightsReaching},
           {"lights_lit_per_pixel", frame.lightsLit}};
+}
+
+nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectStats& s) {
+  return {{"mode", indirectName(settings.mode)},
+          {"rsm_size", settings.rsmSize},
+          {"rsm_lights", s.rsmLights},
+          {"rsm_candidates", s.candidates},
+          {"rsm_texels", s.rsmTexels},
+          {"rsm_flux_share", s.fluxShare},
+          {"gather_passes", s.passes},
+          {"choose_ms", s.chooseMs},
+          {"rsm_ms", s.rsmMs},
+          {"gather_ms", s.gatherMs}};
 }
 
 std::string wholeSceneNote(const std::string& scene, const OctreeSummary& o) {

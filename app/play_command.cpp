@@ -121,6 +121,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   FrameSink sink(a);
   r.method = a.lighting.parsed();
   r.lightcuts = a.lighting.lightcuts();
+  r.indirect = a.lighting.indirectSettings();
   r.lightcuts.trees = a.input.trees();
   r.octree = a.input.octree();
   request.frames = a.frames;

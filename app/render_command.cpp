@@ -109,6 +109,8 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
   }
   const std::string note = wholeSceneNote(scenePath, out.octree);
   if (!note.empty()) std::cerr << "manylight: " << note << "\n";
+  if (request.indirect.mode != Indirect::None && request.aov == Aov::None)
+    stats["indirect"] = indirectStats(request.indirect, out.frame.indirect);
   if (request.aov != Aov::None) {
     stats["aov"] = aovChannel(request.aov).name;
   } else if (out.method == Method::Octree) {
@@ -174,6 +176,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.lightcuts = a.lighting.lightcuts();
   request.lightcuts.trees = a.input.trees();
   request.octree = a.input.octree();
+  request.indirect = a.lighting.indirectSettings();
   request.octreeStats = !a.statsPath.empty();
   const gl::Backend backend = gl::parseBackend(a.backend);
   std::vector<Thumbnail> jobs;

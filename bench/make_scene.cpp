@@ -1,7 +1,9 @@
 // Writes the generated room scene (generators/scene_builder.h) with a chosen light count: the
 // bundled sample (scenes/sample.gltf) and the benchmarks' inputs come from here. With
+// --cornell it writes the Cornell-like room of docs/indirect.md instead. With
 // --layout NAME the lights are those of the sweep's layout (generators/light_layouts.h), so peers
 // (bench/peers.sh) render exactly what `manylight bench` renders.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -14,7 +16,7 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: manylight_make_scene OUT.gltf|OUT.glb LIGHTS [SEED] [--point-only] "
-                 "[--specular] [--untextured] [--layout NAME]\n");
+                 "[--specular] [--untextured] [--layout NAME] [--cornell]\n");
     return 2;
   }
   manylight::RoomOptions o;
@@ -33,7 +35,17 @@ int main(int argc, char** argv) {
             manylight::layoutLights(manylight::parseLightLayout(argv[++i]), o.lightCount, seed);
       }
     }
-    manylight::writeRoomScene(argv[1], o);
+    bool cornell = false;
+    for (int i = 3; i < argc; ++i) cornell = cornell || std::string(argv[i]) == "--cornell";
+    if (cornell) {
+      // The Cornell-like room's spot, and LIGHTS − 1 more lights.
+      manylight::CornellOptions c;
+      c.extraLights = std::max(o.lightCount - 1, 0);
+      c.seed = o.seed;
+      manylight::writeCornellScene(argv[1], c);
+    } else {
+      manylight::writeRoomScene(argv[1], o);
+    }
   } catch (const manylight::Error& e) {
     std::fprintf(stderr, "manylight_make_scene: %s\n", e.what());
     return 1;

@@ -92,6 +92,25 @@ struct RoomOptions {
 };
 void writeRoomScene(const std::string& path, const RoomOptions& options);
 
+// The Cornell-like room of docs/indirect.md: the five inner faces of the box [−1, 1] × [0, 2]
+// × [−1, 1] (open towards +Z), Lambert walls, white but for a red left (x = −1) and a green
+// right (x = 1) wall, one spot light under the ceiling pointing down (cornellSpot), and a
+// camera looking in from +Z. `extraLights` adds that many lights inside the room (point,
+// spot and directional in turn, half of the point and spot ones ranged), their intensities
+// summing to about half the spot's.
+struct CornellOptions {
+  int extraLights = 0;
+  std::uint32_t seed = 1;
+};
+void writeCornellScene(const std::string& path, const CornellOptions& options);
+// A wall: the rectangle origin + s·u + t·v, s, t ∈ [0, 1], facing into the room along
+// `normal`, of Lambert albedo `albedo` (its base colour).
+struct CornellWall {
+  glm::vec3 origin, u, v, normal, albedo;
+};
+std::vector<CornellWall> cornellWalls();
+Light cornellSpot();
+
 // `count` lights scattered uniformly in the box [0, extent] from seed `seed`: all point
 // lights, or point, spot and directional in turn (`mixed`); random colours, intensities in
 // [0.5, 1.5], three in four with a range, spot cones of 0.2–0.8 rad. For tests and

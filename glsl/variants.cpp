@@ -86,6 +86,8 @@ std::vector<ProgramVariants> programs() {
                  "lighting_octree.frag",
                  {"oRadiance"},
                  {octreeDefines(0), octreeDefines(kOctreeHasSpecular)}});
+  out.push_back({"fullscreen.vert", "rsm_flux.frag", {"oRadiance"}, {{}}});
+  out.push_back({"fullscreen.vert", "indirect_exact.frag", {"oRadiance"}, {{}}});
   return out;
 }
 

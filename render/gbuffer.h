@@ -3,6 +3,7 @@
 // depth) and the float radiance target that the G-buffer pass starts and the lighting
 // passes add to.
 #include <array>
+#include <vector>
 
 #include "gl/objects.h"
 
@@ -24,6 +25,8 @@ class GBuffer {
   int height() const { return height_; }
   const gl::Texture& target(Target t) const { return targets_[t]; }
   const gl::Texture& depth() const { return depth_; }
+  // Target `t` read back as RGBA floats, rows bottom-up (GL's order). Throws nothing.
+  std::vector<float> read(Target t) const;
   // Writes all targets (the G-buffer pass).
   const gl::Framebuffer& geometryFramebuffer() const { return geometry_; }
   // Writes only the radiance target, so the lighting passes may sample the others.

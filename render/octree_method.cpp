@@ -95,15 +95,8 @@ int OctreeMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const Vie
 
 OctreeFrameStats OctreeMethod::frameStats(const GBuffer& gbuffer, bool bruteForce) const {
   const int w = gbuffer.width(), h = gbuffer.height();
-  std::vector<float> position(std::size_t(w) * h * 4), normal(position.size());
-  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.geometryFramebuffer().id());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadBuffer(GL_COLOR_ATTACHMENT0 + GBuffer::kPosition);
-  glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, position.data());
-  glReadBuffer(GL_COLOR_ATTACHMENT0 + GBuffer::kNormal);
-  glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, normal.data());
-  glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const std::vector<float> position = gbuffer.read(GBuffer::kPosition);
+  const std::vector<float> normal = gbuffer.read(GBuffer::kNormal);
   OctreeFrameStats stats;
   long long entries = 0, evaluated = 0, reaching = 0, lit = 0;
   std::vector<char> listed(bruteForce ? lights_.size() : 0);

@@ -69,6 +69,8 @@ PreparedRender::PreparedRender(const Scene& scene, const RenderRequest& request)
   settings.ambient = defaultRig && request.rigAmbient ? glm::vec3(kRigAmbient) : request.ambient;
   settings.lightsPerPass = request.lightsPerPass;
   settings.lightcuts = request.lightcuts;
+  settings.indirect = request.aov == Aov::None ? request.indirect : IndirectSettings{};
+  if (settings.indirect.mode != Indirect::None) renderer->enableIndirect(lights);
 }
 
 RenderOutcome renderScene(const Scene& scene, const RenderRequest& request) {

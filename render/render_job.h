@@ -25,7 +25,8 @@ struct RenderRequest {
   const PackedTrees* prebuiltTrees = nullptr;
   // The same for the octree method's octree.
   const LinklessOctree* prebuiltOctree = nullptr;
-  bool octreeStats = false;  // FrameSettings::octreeStats
+  bool octreeStats = false;   // FrameSettings::octreeStats
+  IndirectSettings indirect;  // FrameSettings::indirect (none for an AOV)
   // Not None: the image is this material channel (render/aov.h), lit by nothing; no light
   // trees are built for it.
   Aov aov = Aov::None;

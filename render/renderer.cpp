@@ -86,6 +86,7 @@ void Renderer::replaceLights(const std::vector<Light>& lights) {
 void Renderer::moveLights(const std::vector<Light>& lights, const std::vector<int>& changed,
                           const BakeOptions& options) {
   gpu_.replaceLights(lights);
+  if (!indirectLights_.empty()) indirectLights_ = lights;
   if (octree_) {
     if (!dynamic_ || !dynamic_->update(lights, changed))
       dynamic_ = std::make_unique<DynamicOctree>(lights, scene_, options.octree);
@@ -152,6 +153,14 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
       }
     };
     light();
+    if (settings.indirect.mode != Indirect::None) {
+      if (!indirect_ || indirect_->rsmSize() != settings.indirect.rsmSize)
+        indirect_ = std::make_unique<IndirectLight>(settings.indirect.rsmSize);
+      const IndirectStats indirect =
+          indirect_->light(scene_, gpu_, geometry_, gbuffer_, indirectLights_, settings.indirect);
+      if (stats) stats->indirect = indirect;
+      glBindVertexArray(emptyVao_.id());
+    }
     // The opaque frame's cut statistics, before blended layers light the G-buffer again.
     if (stats && lightcuts_ && settings.readCutStats) stats->cuts = lightcuts_->cutStats();
     if (stats && octree_ && settings.octreeStats) {

@@ -14,6 +14,7 @@
 #include "render/gbuffer.h"
 #include "render/geometry_pass.h"
 #include "render/gpu_scene.h"
+#include "render/indirect_light.h"
 #include "render/lightcuts_method.h"
 #include "render/octree_method.h"
 #include "render/reference_method.h"
@@ -43,6 +44,8 @@ struct FrameSettings {
   // The octree method: count each pixel's list entries and the lights reaching it into
   // FrameStats (on the CPU, from the G-buffer read back).
   bool octreeStats = false;
+  // One bounce of indirect light (Renderer::enableIndirect must have given the lights).
+  IndirectSettings indirect;
 };
 
 inline constexpr int kRowBand = 8;
@@ -56,6 +59,7 @@ struct FrameStats {
   int lightingPasses = 0;          // 0 for an AOV
   CutStats cuts;                   // lightcuts methods only
   OctreeFrameStats octree;         // the octree method with FrameSettings::octreeStats
+  IndirectStats indirect;          // FrameSettings::indirect
 };
 
 // What the methods take baked for the lights (a baked file's, or built by prepareRenderer):
@@ -109,6 +113,10 @@ class Renderer {
   void moveLights(const std::vector<Light>& lights, const std::vector<int>& changed,
                   const BakeOptions& options);
 
+  // Lets frames add indirect light (FrameSettings::indirect) from `lights`, the
+  // construction's, which it keeps a copy of (moveLights updates it).
+  void enableIndirect(const std::vector<Light>& lights) { indirectLights_ = lights; }
+
   // Renders one frame seen through `view`. Throws gl::GlError on a driver error.
   Image render(const View& view, const FrameSettings& settings, FrameStats* stats = nullptr);
 
@@ -126,9 +134,11 @@ class Renderer {
   ReferenceMethod reference_;
   std::unique_ptr<LightcutsMethod> lightcuts_;
   std::unique_ptr<OctreeMethod> octree_;
-  std::unique_ptr<DynamicOctree> dynamic_;  // the octree method's, once lights move
-  std::unique_ptr<DynamicTrees> trees_;     // the lightcuts methods', once lights move
-  bool distance_ = false;                   // lightcuts-distance
+  std::unique_ptr<DynamicOctree> dynamic_;   // the octree method's, once lights move
+  std::unique_ptr<DynamicTrees> trees_;      // the lightcuts methods', once lights move
+  std::unique_ptr<IndirectLight> indirect_;  // made on the first frame that asks for it
+  std::vector<Light> indirectLights_;        // enableIndirect's
+  bool distance_ = false;                    // lightcuts-distance
   double uploadMs_ = 0.0;
   gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
 };

@@ -1,0 +1,139 @@
+#include "render/indirect_light.h"
+
+#include <chrono>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "bake/light_pack.h"
+#include "base/error.h"
+#include "gl/context.h"
+#include "render/rsm.h"
+
+namespace manylight {
+
+using namespace gl::api;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+void bindTarget(const gl::Program& p, const char* name, const gl::Texture& t, int unit) {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_2D, t.id());
+  glUniform1i(p.uniform(name), unit);
+}
+
+// Writes the map's flux over its radiance target (glsl/rsm_flux.frag).
+void renderFlux(const GBuffer& rsm, const Light& light, const RsmView& view) {
+  const gl::Program& p = gl::cachedProgram("fullscreen.vert", "rsm_flux.frag", {}, {"oRadiance"});
+  p.use();
+  glBindFramebuffer(GL_FRAMEBUFFER, rsm.lightingFramebuffer().id());
+  glViewport(0, 0, rsm.width(), rsm.height());
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  bindTarget(p, "uPosition", rsm.target(GBuffer::kPosition), 0);
+  bindTarget(p, "uNormal", rsm.target(GBuffer::kNormal), 1);
+  bindTarget(p, "uAlbedo", rsm.target(GBuffer::kAlbedo), 2);
+  // The light texture's sampler is not read, but may not share a unit with the others.
+  glUniform1i(p.uniform("uLights"), 3);
+  const std::vector<float> t = packLightTexels({light}, {0});
+  glUniform4fv(p.uniform("uLight0"), 1, &t[0]);
+  glUniform4fv(p.uniform("uLight1"), 1, &t[4]);
+  glUniform4fv(p.uniform("uLight2"), 1, &t[8]);
+  glUniform1i(p.uniform("uDirectional"), light.type == LightType::Directional ? 1 : 0);
+  glUniform3fv(p.uniform("uAxis"), 1, glm::value_ptr(view.view.forward));
+  glUniform1f(p.uniform("uTexelScale"), view.texelScale);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+// Rows of map texels a gather pass takes: llvmpipe ends a shader invocation's loops after
+// 65,535 iterations in all, and the inner loop runs once per texel of a row.
+int rowsPerPass(int size) { return std::max(1, 65000 / std::max(size, 1) - 1); }
+
+// Adds the map's texels' light to the camera's radiance target; returns the passes.
+int gather(const GBuffer& camera, const GBuffer& rsm) {
+  const gl::Program& p =
+      gl::cachedProgram("fullscreen.vert", "indirect_exact.frag", {}, {"oRadiance"});
+  p.use();
+  glBindFramebuffer(GL_FRAMEBUFFER, camera.lightingFramebuffer().id());
+  glViewport(0, 0, camera.width(), camera.height());
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  bindTarget(p, "uPosition", camera.target(GBuffer::kPosition), 0);
+  bindTarget(p, "uNormal", camera.target(GBuffer::kNormal), 1);
+  bindTarget(p, "uAlbedo", camera.target(GBuffer::kAlbedo), 2);
+  bindTarget(p, "uRsmPosition", rsm.target(GBuffer::kPosition), 3);
+  bindTarget(p, "uRsmNormal", rsm.target(GBuffer::kNormal), 4);
+  bindTarget(p, "uRsmFlux", rsm.target(GBuffer::kRadiance), 5);
+  glUniform1i(p.uniform("uRsmSize"), rsm.width());
+  const int rows = rowsPerPass(rsm.width());
+  int passes = 0;
+  for (int first = 0; first < rsm.height(); first += rows, ++passes) {
+    glUniform1i(p.uniform("uFirstRow"), first);
+    glUniform1i(p.uniform("uRows"), std::min(rows, rsm.height() - first));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+  return passes;
+}
+
+// Map texels that reflect flux (flux.w, the patch area, is non-zero).
+long long reflectingTexels(const GBuffer& rsm) {
+  const std::vector<float> flux = rsm.read(GBuffer::kRadiance);
+  long long n = 0;
+  for (std::size_t i = 3; i < flux.size(); i += 4) n += flux[i] != 0.0f;
+  return n;
+}
+
+}  // namespace
+
+Indirect parseIndirect(const std::string& name) {
+  if (name == "none") return Indirect::None;
+  if (name == "exact") return Indirect::Exact;
+  throw Error("unknown indirect light '" + name + "' (choose none or exact)");
+}
+
+const char* indirectName(Indirect i) { return i == Indirect::Exact ? "exact" : "none"; }
+
+IndirectLight::IndirectLight(int rsmSize) : rsm_(rsmSize, rsmSize) {}
+
+IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
+                                   const GeometryPass& geometry, const GBuffer& camera,
+                                   const std::vector<Light>& lights,
+                                   const IndirectSettings& settings) {
+  IndirectStats stats;
+  if (settings.mode == Indirect::None) return stats;
+  auto start = Clock::now();
+  const RsmChoice choice = chooseRsmLights(lights, camera.read(GBuffer::kPosition),
+                                           camera.read(GBuffer::kNormal), settings.rsmLights);
+  stats.candidates = choice.candidates;
+  stats.fluxShare = choice.fluxShare;
+  stats.chooseMs = msSince(start);
+  const Bounds bounds = scene.bounds();
+  for (int index : choice.lights) {
+    const Light& light = lights[std::size_t(index)];
+    start = Clock::now();
+    const RsmView view = rsmView(light, bounds, rsm_.width());
+    geometry.draw(scene, gpu, rsm_, view.view, glm::vec3(0.0f));
+    glBindVertexArray(emptyVao_.id());
+    renderFlux(rsm_, light, view);
+    stats.rsmTexels += reflectingTexels(rsm_);
+    stats.rsmMs += msSince(start);
+    start = Clock::now();
+    stats.passes += gather(camera, rsm_);
+    glFinish();
+    stats.gatherMs += msSince(start);
+    ++stats.rsmLights;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindVertexArray(0);
+  return stats;
+}
+
+}  // namespace manylight

@@ -1,0 +1,59 @@
+#pragma once
+// One bounce of diffuse indirect light (`--indirect`), added to the direct light of any
+// method: reflective shadow maps (render/rsm.h) for the spot and directional lights that send
+// the most flux into the view, whose texels light every pixel as small diffuse patches
+// (glsl/indirect_exact.frag). No visibility between a texel and a pixel: indirect light
+// passes through walls. Blended surfaces neither reflect nor receive it.
+#include <string>
+#include <vector>
+
+#include "render/gbuffer.h"
+#include "render/geometry_pass.h"
+#include "render/gpu_scene.h"
+#include "scene/scene.h"
+
+namespace manylight {
+
+// none: direct light only; exact: every map texel at every pixel.
+enum class Indirect { None, Exact };
+
+// "none", "exact" → Indirect; throws Error naming the choices for anything else.
+Indirect parseIndirect(const std::string& name);
+const char* indirectName(Indirect i);
+
+struct IndirectSettings {
+  Indirect mode = Indirect::None;
+  int rsmLights = 4;  // lights given maps at most (docs/indirect.md)
+  int rsmSize = 64;   // a map's width and height in texels
+};
+
+// A frame's indirect light (`--stats`).
+struct IndirectStats {
+  int rsmLights = 0;        // maps rendered
+  int candidates = 0;       // spot and directional lights
+  long long rsmTexels = 0;  // map texels that reflect flux, over all maps
+  double fluxShare = 1.0;   // RsmChoice::fluxShare
+  int passes = 0;           // gather passes
+  double chooseMs = 0.0;    // reading the G-buffer back and choosing the lights (CPU)
+  double rsmMs = 0.0;       // rendering the maps and their flux
+  double gatherMs = 0.0;    // the gather passes
+};
+
+class IndirectLight {
+ public:
+  // Needs a current context; throws gl::GlError.
+  explicit IndirectLight(int rsmSize);
+  int rsmSize() const { return rsm_.width(); }
+
+  // Adds one bounce from the maps of the chosen `lights` (the renderer's, by scene index) to
+  // the radiance target of `camera`, whose G-buffer holds the frame. Throws gl::GlError.
+  IndirectStats light(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
+                      const GBuffer& camera, const std::vector<Light>& lights,
+                      const IndirectSettings& settings);
+
+ private:
+  GBuffer rsm_;               // one map at a time: its radiance target holds the flux
+  gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
+};
+
+}  // namespace manylight

@@ -1,0 +1,47 @@
+#pragma once
+// Reflective shadow maps (Dachsbacher and Stamminger 2005) for `--indirect`
+// (render/indirect_light.h): a spot or directional light's view of the scene, whose texels
+// are patches of the surfaces it lights first, each reflecting a flux (glsl/rsm_flux.frag).
+// Point lights get none (they would need six maps); neither do lights beyond the chosen few.
+#include <vector>
+
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+namespace manylight {
+
+// The lights given maps for one frame and what they cover.
+struct RsmChoice {
+  std::vector<int> lights;  // scene indices, the most flux first
+  int candidates = 0;       // spot and directional lights
+  // The chosen lights' share of the direct flux the view receives: of Σ over the sampled
+  // pixels of every light's irradiance there (luminance), the part the chosen ones give.
+  // 1 where no light reaches the view.
+  double fluxShare = 1.0;
+};
+
+// Pixels chooseRsmLights samples at most, on a regular grid over the image.
+inline constexpr int kRsmChoiceSamples = 256;
+
+// The `count` spot and directional lights that send the most flux into the view: the
+// largest Σ of irradiance (luminance) over up to kRsmChoiceSamples covered pixels of the
+// frame's G-buffer, read back as RGBA floats (`position`, `normal`; normal.w 0 off the
+// geometry). Ties go to the lower index. Runs on every core.
+RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<float>& position,
+                          const std::vector<float>& normal, int count);
+
+// A map's camera and the scale of its texels' areas (glsl/rsm_flux.frag's uTexelScale).
+struct RsmView {
+  View view;
+  float texelScale = 0.0f;
+};
+
+// The view of a `size` × `size` map of `light` over the scene `bounds`: for a spot, a
+// perspective from its position along its direction whose field of view is twice the
+// outer cone angle (at most kMaxRsmHalfAngle: a wider cone loses its rim), near at 10⁻³ of
+// its reach, far at its range (or the scene's far side); for a directional light, an
+// orthographic view along it covering the scene's bounding sphere.
+RsmView rsmView(const Light& light, const Bounds& bounds, int size);
+inline constexpr float kMaxRsmHalfAngle = 1.3089969f;  // 75°
+
+}  // namespace manylight
