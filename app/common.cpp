@@ -172,10 +172,20 @@ void addMethodOptions(CLI::App* app, MethodArgs& a) {
       ->capture_default_str()
       ->check(CLI::IsMember({1, 4, 8, 16, 32, 64}));
   app->add_option("--indirect", a.indirect,
-                  "One bounce of diffuse indirect light from reflective shadow maps: none, or "
-                  "exact (every map texel at every pixel; see docs/indirect.md)")
+                  "One bounce of diffuse indirect light from reflective shadow maps: none, "
+                  "exact (every map texel at every pixel) or caches (at light caches on "
+                  "cascaded grids, interpolated per pixel; see docs/indirect.md)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"none", "exact"}));
+      ->check(CLI::IsMember({"none", "exact", "caches"}));
+  app->add_option("--cache-basis", a.cacheBasis,
+                  "--indirect caches: spherical harmonics sh1 (4 coefficients) or sh2 (9)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"sh1", "sh2"}));
+  app->add_option("--cache-cell", a.cacheCell,
+                  "--indirect caches: the smallest cascade's cell edge in scene units (0: the "
+                  "scene's diagonal / 128)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app->add_option("--rsm-lights", a.rsmLights,
                   "--indirect: the spot and directional lights sending the most flux into the "
                   "view that get a reflective shadow map")
@@ -225,7 +235,12 @@ nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectSta
           {"gather_passes", s.passes},
           {"choose_ms", s.chooseMs},
           {"rsm_ms", s.rsmMs},
-          {"gather_ms", s.gatherMs}};
+          {"gather_ms", s.gatherMs},
+          {"caches", s.caches},
+          {"cascades", s.cascades},
+          {"cache_cell", s.cacheCell},
+          {"allocate_ms", s.allocateMs},
+          {"interpolate_ms", s.interpolateMs}};
 }
 
 std::string wholeSceneNote(const std::string& scene, const OctreeSummary& o) {

@@ -36,6 +36,7 @@
   X(PFNGLBINDTEXTUREPROC, glBindTexture)                         \
   X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                           \
   X(PFNGLTEXSUBIMAGE2DPROC, glTexSubImage2D)                     \
+  X(PFNGLTEXIMAGE3DPROC, glTexImage3D)                           \
   X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                     \
   X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                     \
   X(PFNGLGENERATEMIPMAPPROC, glGenerateMipmap)                   \
@@ -75,6 +76,7 @@
   X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)           \
   X(PFNGLUNIFORM1IPROC, glUniform1i)                             \
   X(PFNGLUNIFORM1FPROC, glUniform1f)                             \
+  X(PFNGLUNIFORM1FVPROC, glUniform1fv)                           \
   X(PFNGLUNIFORM2FPROC, glUniform2f)                             \
   X(PFNGLUNIFORM3IPROC, glUniform3i)                             \
   X(PFNGLUNIFORM1IVPROC, glUniform1iv)                           \

@@ -88,6 +88,9 @@ std::vector<ProgramVariants> programs() {
                  {octreeDefines(0), octreeDefines(kOctreeHasSpecular)}});
   out.push_back({"fullscreen.vert", "rsm_flux.frag", {"oRadiance"}, {{}}});
   out.push_back({"fullscreen.vert", "indirect_exact.frag", {"oRadiance"}, {{}}});
+  const std::vector<std::string> sh = {"oSh0", "oSh1", "oSh2", "oSh3", "oSh4", "oSh5", "oSh6"};
+  out.push_back({"fullscreen.vert", "cache_gather.frag", sh, {{}, {"SH_L2"}}});
+  out.push_back({"fullscreen.vert", "cache_interpolate.frag", {"oRadiance"}, {{}, {"SH_L2"}}});
   return out;
 }
 

@@ -96,40 +96,69 @@ long long reflectingTexels(const GBuffer& rsm) {
 Indirect parseIndirect(const std::string& name) {
   if (name == "none") return Indirect::None;
   if (name == "exact") return Indirect::Exact;
-  throw Error("unknown indirect light '" + name + "' (choose none or exact)");
+  if (name == "caches") return Indirect::Caches;
+  throw Error("unknown indirect light '" + name + "' (choose none, exact or caches)");
 }
 
-const char* indirectName(Indirect i) { return i == Indirect::Exact ? "exact" : "none"; }
+const char* indirectName(Indirect i) {
+  return i == Indirect::Exact ? "exact" : i == Indirect::Caches ? "caches" : "none";
+}
+
+CacheGrid frameCacheGrid(const IndirectSettings& settings, const Bounds& bounds, glm::vec3 eye) {
+  const float diagonal = bounds.empty ? 1.0f : glm::length(bounds.max - bounds.min);
+  const float cell = std::max(
+      settings.cacheCell > 0.0f ? settings.cacheCell : diagonal / kCacheCellsPerScene, 1e-6f);
+  return cacheGrid(eye, cell, cascadesToCover(eye, cell, bounds));
+}
 
 IndirectLight::IndirectLight(int rsmSize) : rsm_(rsmSize, rsmSize) {}
 
 IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
                                    const GeometryPass& geometry, const GBuffer& camera,
-                                   const std::vector<Light>& lights,
+                                   const View& view, const std::vector<Light>& lights,
                                    const IndirectSettings& settings) {
   IndirectStats stats;
   if (settings.mode == Indirect::None) return stats;
   auto start = Clock::now();
-  const RsmChoice choice = chooseRsmLights(lights, camera.read(GBuffer::kPosition),
-                                           camera.read(GBuffer::kNormal), settings.rsmLights);
+  const std::vector<float> position = camera.read(GBuffer::kPosition);
+  const std::vector<float> normal = camera.read(GBuffer::kNormal);
+  const RsmChoice choice = chooseRsmLights(lights, position, normal, settings.rsmLights);
   stats.candidates = choice.candidates;
   stats.fluxShare = choice.fluxShare;
   stats.chooseMs = msSince(start);
   const Bounds bounds = scene.bounds();
+  const bool caches = settings.mode == Indirect::Caches;
+  if (caches) {
+    start = Clock::now();
+    const CacheGrid grid = frameCacheGrid(settings, bounds, view.eye);
+    if (!caches_) caches_ = std::make_unique<LightCaches>();
+    caches_->upload(grid, allocateCaches(grid, position, normal), settings.shL2);
+    stats.caches = caches_->count();
+    stats.cascades = grid.cascades;
+    stats.cacheCell = grid.cell[0];
+    stats.allocateMs = msSince(start);
+  }
   for (int index : choice.lights) {
     const Light& light = lights[std::size_t(index)];
     start = Clock::now();
-    const RsmView view = rsmView(light, bounds, rsm_.width());
-    geometry.draw(scene, gpu, rsm_, view.view, glm::vec3(0.0f));
+    const RsmView rsmCamera = rsmView(light, bounds, rsm_.width());
+    geometry.draw(scene, gpu, rsm_, rsmCamera.view, glm::vec3(0.0f));
     glBindVertexArray(emptyVao_.id());
-    renderFlux(rsm_, light, view);
+    renderFlux(rsm_, light, rsmCamera);
     stats.rsmTexels += reflectingTexels(rsm_);
     stats.rsmMs += msSince(start);
     start = Clock::now();
-    stats.passes += gather(camera, rsm_);
+    stats.passes +=
+        caches ? caches_->gather(rsm_, rowsPerPass(rsm_.width())) : gather(camera, rsm_);
     glFinish();
     stats.gatherMs += msSince(start);
     ++stats.rsmLights;
+  }
+  if (caches) {
+    start = Clock::now();
+    caches_->interpolate(camera);
+    glFinish();
+    stats.interpolateMs = msSince(start);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glBindVertexArray(0);

@@ -4,28 +4,35 @@
 // the most flux into the view, whose texels light every pixel as small diffuse patches
 // (glsl/indirect_exact.frag). No visibility between a texel and a pixel: indirect light
 // passes through walls. Blended surfaces neither reflect nor receive it.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "render/gbuffer.h"
 #include "render/geometry_pass.h"
 #include "render/gpu_scene.h"
+#include "render/light_caches.h"
 #include "scene/scene.h"
 
 namespace manylight {
 
-// none: direct light only; exact: every map texel at every pixel.
-enum class Indirect { None, Exact };
+// none: direct light only; exact: every map texel at every pixel; caches: every map texel at
+// every light cache (render/light_caches.h), interpolated per pixel.
+enum class Indirect { None, Exact, Caches };
 
-// "none", "exact" → Indirect; throws Error naming the choices for anything else.
+// "none", "exact", "caches" → Indirect; throws Error naming the choices for anything else.
 Indirect parseIndirect(const std::string& name);
 const char* indirectName(Indirect i);
 
 struct IndirectSettings {
   Indirect mode = Indirect::None;
-  int rsmLights = 4;  // lights given maps at most (docs/indirect.md)
-  int rsmSize = 64;   // a map's width and height in texels
+  int rsmLights = 4;       // lights given maps at most (docs/indirect.md)
+  int rsmSize = 64;        // a map's width and height in texels
+  bool shL2 = true;        // caches: SH L2 (9 coefficients) or SH L1 (4)
+  float cacheCell = 0.0f;  // caches: the smallest cascade's cell edge; 0: kCacheCellsPerScene
 };
+// The default smallest cell edge: the scene's bounding box diagonal over this.
+inline constexpr float kCacheCellsPerScene = 128.0f;
 
 // A frame's indirect light (`--stats`).
 struct IndirectStats {
@@ -36,8 +43,18 @@ struct IndirectStats {
   int passes = 0;           // gather passes
   double chooseMs = 0.0;    // reading the G-buffer back and choosing the lights (CPU)
   double rsmMs = 0.0;       // rendering the maps and their flux
-  double gatherMs = 0.0;    // the gather passes
+  double gatherMs = 0.0;    // the gather passes (exact), or the caches' (caches)
+  // --indirect caches:
+  int caches = 0;  // allocated this frame
+  int cascades = 0;
+  float cacheCell = 0.0f;      // the smallest cascade's cell edge
+  double allocateMs = 0.0;     // allocated on the CPU and uploaded
+  double interpolateMs = 0.0;  // the per-pixel interpolation pass
 };
+
+// The cascades of a frame seen from `eye`: the smallest cell `settings.cacheCell` (or the
+// scene's diagonal / kCacheCellsPerScene), and as many cascades as hold the scene.
+CacheGrid frameCacheGrid(const IndirectSettings& settings, const Bounds& bounds, glm::vec3 eye);
 
 class IndirectLight {
  public:
@@ -48,12 +65,14 @@ class IndirectLight {
   // Adds one bounce from the maps of the chosen `lights` (the renderer's, by scene index) to
   // the radiance target of `camera`, whose G-buffer holds the frame. Throws gl::GlError.
   IndirectStats light(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
-                      const GBuffer& camera, const std::vector<Light>& lights,
+                      const GBuffer& camera, const View& view, const std::vector<Light>& lights,
                       const IndirectSettings& settings);
 
  private:
-  GBuffer rsm_;               // one map at a time: its radiance target holds the flux
-  gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
+  GBuffer rsm_;  // one map at a time: its radiance target holds the flux
+  gl::VertexArray emptyVao_;
+  std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches  // the full-screen
+                                         // triangle needs a bound VAO in core profile
 };
 
 }  // namespace manylight

@@ -156,8 +156,8 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
     if (settings.indirect.mode != Indirect::None) {
       if (!indirect_ || indirect_->rsmSize() != settings.indirect.rsmSize)
         indirect_ = std::make_unique<IndirectLight>(settings.indirect.rsmSize);
-      const IndirectStats indirect =
-          indirect_->light(scene_, gpu_, geometry_, gbuffer_, indirectLights_, settings.indirect);
+      const IndirectStats indirect = indirect_->light(scene_, gpu_, geometry_, gbuffer_, view,
+                                                      indirectLights_, settings.indirect);
       if (stats) stats->indirect = indirect;
       glBindVertexArray(emptyVao_.id());
     }

@@ -1,0 +1,70 @@
+// `--indirect caches` (render/light_caches.h): per cache (one fragment of the cache target,
+// cache c at texel (c mod width, c / width)), the light of one reflective shadow map's texels
+// arriving at the cache's position, projected on glsl/sh_basis.glsl, added (blend ONE, ONE) to
+// the coefficient targets. A texel of flux Φ and area A at y, normal n_t, sends towards the
+// cache at q, along ω = (y − q)/d,
+//   Φ · max(n_t·(−ω), 0) / (π · (d² + A/π))  per unit max(n·ω, 0),
+// so a pixel's irradiance E(n) = Σ that · max(n·ω, 0), as glsl/indirect_exact.frag sums it.
+uniform sampler2D uCachePosition;
+uniform int uCacheCount;
+uniform sampler2D uRsmPosition;
+uniform sampler2D uRsmNormal;
+uniform sampler2D uRsmFlux;
+uniform int uRsmSize;
+uniform int uFirstRow;
+uniform int uRows;
+
+out vec4 oSh0;
+out vec4 oSh1;
+out vec4 oSh2;
+out vec4 oSh3;
+out vec4 oSh4;
+out vec4 oSh5;
+out vec4 oSh6;
+
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  int width = textureSize(uCachePosition, 0).x;
+  if (px.y * width + px.x >= uCacheCount) discard;
+  vec3 q = texelFetch(uCachePosition, px, 0).xyz;
+  vec3 c[9] = vec3[9](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
+                      vec3(0.0), vec3(0.0), vec3(0.0));
+  for (int row = uFirstRow; row < uFirstRow + uRows; ++row) {
+    for (int column = 0; column < uRsmSize; ++column) {
+      ivec2 t = ivec2(column, row);
+      vec4 flux = texelFetch(uRsmFlux, t, 0);
+      if (flux.w == 0.0) continue;
+      vec3 w = texelFetch(uRsmPosition, t, 0).xyz - q;
+      vec3 nt = texelFetch(uRsmNormal, t, 0).xyz;
+      float d2 = max(dot(w, w), kMinDistanceSquared);
+      float invD = inversesqrt(d2);
+      vec3 omega = w * invD;
+      float s = max(-dot(nt, omega), 0.0) / (kPi * (d2 + flux.w / kPi));
+      if (s == 0.0) continue;
+      float y[9];
+      shBasis(omega, y);
+      vec3 f = flux.rgb * s;
+      // Written out: llvmpipe counts an inner loop's iterations against the invocation's
+      // 65,535 (render/indirect_light.cpp's rowsPerPass).
+      c[0] += f * y[0];
+      c[1] += f * y[1];
+      c[2] += f * y[2];
+      c[3] += f * y[3];
+#ifdef SH_L2
+      c[4] += f * y[4];
+      c[5] += f * y[5];
+      c[6] += f * y[6];
+      c[7] += f * y[7];
+      c[8] += f * y[8];
+#endif
+    }
+  }
+  // The coefficients' 27 floats, RGB after RGB, in seven texels (three for SH L1).
+  oSh0 = vec4(c[0], c[1].r);
+  oSh1 = vec4(c[1].gb, c[2].rg);
+  oSh2 = vec4(c[2].b, c[3]);
+  oSh3 = vec4(c[4], c[5].r);
+  oSh4 = vec4(c[5].gb, c[6].rg);
+  oSh5 = vec4(c[6].b, c[7]);
+  oSh6 = vec4(c[8], 0.0);
+}

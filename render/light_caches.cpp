@@ -1,0 +1,217 @@
+#include "render/light_caches.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/context.h"
+
+namespace manylight {
+
+using namespace gl::api;
+
+CacheGrid cacheGrid(glm::vec3 centre, float cell, int cascades, int resolution) {
+  CacheGrid g;
+  g.cascades = std::clamp(cascades, 1, kMaxCascades);
+  g.resolution = resolution;
+  g.centre = centre;
+  for (int k = 0; k < g.cascades; ++k) {
+    const float h = cell * float(1 << k);
+    const glm::vec3 snapped = glm::floor(centre / h + 0.5f) * h;
+    g.origin.push_back(snapped - float(resolution / 2) * h);
+    g.cell.push_back(h);
+    g.decision.push_back(float(resolution / 2 - 2) * h);
+  }
+  return g;
+}
+
+int cascadesToCover(glm::vec3 centre, float cell, const Bounds& bounds, int resolution) {
+  if (bounds.empty) return 1;
+  const glm::vec3 far = glm::max(glm::abs(bounds.min - centre), glm::abs(bounds.max - centre));
+  const float reach = std::max({far.x, far.y, far.z});
+  int cascades = 1;
+  while (cascades < kMaxCascades &&
+         float(resolution / 2 - 2) * cell * float(1 << (cascades - 1)) < reach)
+    ++cascades;
+  return cascades;
+}
+
+int cascadeOf(const CacheGrid& grid, glm::vec3 p, float* band) {
+  const glm::vec3 d3 = glm::abs(p - grid.centre);
+  const float d = std::max({d3.x, d3.y, d3.z});
+  int k = 0;
+  while (k < grid.cascades && d > grid.decision[std::size_t(k)]) ++k;
+  if (band) {
+    const float width = k < grid.cascades ? kBandCells * grid.cell[std::size_t(k)] : 1.0f;
+    *band = k < grid.cascades
+                ? std::max(0.0f, (d - (grid.decision[std::size_t(k)] - width)) / width)
+                : 0.0f;
+  }
+  return k;
+}
+
+namespace {
+
+// Marks the eight nodes around p in cascade k.
+void markCell(const CacheGrid& g, int k, glm::vec3 p, CacheAllocation& a) {
+  const int n = g.nodesPerAxis();
+  const glm::vec3 cell = glm::floor((p - g.origin[std::size_t(k)]) / g.cell[std::size_t(k)]);
+  const glm::ivec3 base(cell);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::ivec3 node =
+        glm::clamp(base + glm::ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1),
+                   glm::ivec3(0), glm::ivec3(g.resolution));
+    float& slot = a.cav[std::size_t(((k * n + node.z) * n + node.y) * n + node.x)];
+    if (slot >= 0.0f) continue;
+    slot = float(a.positions.size());
+    a.positions.push_back(
+        glm::vec4(g.origin[std::size_t(k)] + glm::vec3(node) * g.cell[std::size_t(k)],
+                  g.cell[std::size_t(k)]));
+  }
+}
+
+}  // namespace
+
+CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& position,
+                               const std::vector<float>& normal) {
+  CacheAllocation a;
+  const std::size_t n = std::size_t(grid.nodesPerAxis());
+  a.cav.assign(n * n * n * std::size_t(grid.cascades), -1.0f);
+  for (std::size_t i = 0; 4 * i + 3 < normal.size(); ++i) {
+    if (normal[4 * i + 3] == 0.0f) continue;
+    const glm::vec3 p(position[4 * i], position[4 * i + 1], position[4 * i + 2]);
+    float band = 0.0f;
+    const int k = cascadeOf(grid, p, &band);
+    if (k == grid.cascades) continue;
+    markCell(grid, k, p, a);
+    if (band > 0.0f && k + 1 < grid.cascades) markCell(grid, k + 1, p, a);
+  }
+  return a;
+}
+
+namespace {
+
+constexpr int kCacheTextureWidth = 512;
+
+void allocate2d(const gl::Texture& t, int w, int h, const float* data) {
+  glBindTexture(GL_TEXTURE_2D, t.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, data);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+
+void bind(const gl::Program& p, const char* name, GLenum target, GLuint id, int unit) {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(target, id);
+  glUniform1i(p.uniform(name), unit);
+}
+
+std::vector<std::string> basisDefines(bool shL2) {
+  return shL2 ? std::vector<std::string>{"SH_L2"} : std::vector<std::string>{};
+}
+
+const char* const kShNames[] = {"uSh0", "uSh1", "uSh2", "uSh3", "uSh4", "uSh5", "uSh6"};
+const std::vector<std::string> kShOutputs = {"oSh0", "oSh1", "oSh2", "oSh3",
+                                             "oSh4", "oSh5", "oSh6"};
+
+}  // namespace
+
+void LightCaches::upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2) {
+  grid_ = grid;
+  shL2_ = shL2;
+  count_ = int(a.positions.size());
+  const int n = grid.nodesPerAxis();
+  glBindTexture(GL_TEXTURE_3D, cav_.id());
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n, n, n * grid.cascades, 0, GL_RED, GL_FLOAT,
+               a.cav.data());
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_3D, 0);
+  const int width = kCacheTextureWidth, height = std::max(1, (count_ + width - 1) / width);
+  std::vector<float> texels(std::size_t(width) * std::size_t(height) * 4, 0.0f);
+  for (std::size_t c = 0; c < a.positions.size(); ++c)
+    std::copy_n(glm::value_ptr(a.positions[c]), 4, &texels[4 * c]);
+  allocate2d(positions_, width, height, texels.data());
+  const std::size_t targets = shL2 ? 7 : 3;
+  if (height != height_ || sh_.size() != targets) {
+    sh_.clear();
+    sh_.resize(targets);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    std::vector<GLenum> buffers;
+    for (std::size_t i = 0; i < targets; ++i) {
+      allocate2d(sh_[i], width, height, nullptr);
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + GLenum(i), GL_TEXTURE_2D,
+                             sh_[i].id(), 0);
+      buffers.push_back(GL_COLOR_ATTACHMENT0 + GLenum(i));
+    }
+    glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+  }
+  width_ = width;
+  height_ = height;
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  const float zero[4] = {0, 0, 0, 0};
+  for (std::size_t i = 0; i < sh_.size(); ++i) glClearBufferfv(GL_COLOR, GLint(i), zero);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+int LightCaches::gather(const GBuffer& rsm, int rowsPerPass) {
+  if (count_ == 0) return 0;
+  const gl::Program& p =
+      gl::cachedProgram("fullscreen.vert", "cache_gather.frag", basisDefines(shL2_), kShOutputs);
+  p.use();
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  bind(p, "uCachePosition", GL_TEXTURE_2D, positions_.id(), 0);
+  bind(p, "uRsmPosition", GL_TEXTURE_2D, rsm.target(GBuffer::kPosition).id(), 1);
+  bind(p, "uRsmNormal", GL_TEXTURE_2D, rsm.target(GBuffer::kNormal).id(), 2);
+  bind(p, "uRsmFlux", GL_TEXTURE_2D, rsm.target(GBuffer::kRadiance).id(), 3);
+  glUniform1i(p.uniform("uCacheCount"), count_);
+  glUniform1i(p.uniform("uRsmSize"), rsm.width());
+  int passes = 0;
+  for (int first = 0; first < rsm.height(); first += rowsPerPass, ++passes) {
+    glUniform1i(p.uniform("uFirstRow"), first);
+    glUniform1i(p.uniform("uRows"), std::min(rowsPerPass, rsm.height() - first));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+  return passes;
+}
+
+void LightCaches::interpolate(const GBuffer& camera) {
+  const gl::Program& p = gl::cachedProgram("fullscreen.vert", "cache_interpolate.frag",
+                                           basisDefines(shL2_), {"oRadiance"});
+  p.use();
+  glBindFramebuffer(GL_FRAMEBUFFER, camera.lightingFramebuffer().id());
+  glViewport(0, 0, camera.width(), camera.height());
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  bind(p, "uPosition", GL_TEXTURE_2D, camera.target(GBuffer::kPosition).id(), 0);
+  bind(p, "uNormal", GL_TEXTURE_2D, camera.target(GBuffer::kNormal).id(), 1);
+  bind(p, "uAlbedo", GL_TEXTURE_2D, camera.target(GBuffer::kAlbedo).id(), 2);
+  bind(p, "uCav", GL_TEXTURE_3D, cav_.id(), 3);
+  for (int i = 0; i < 7; ++i) {
+    // SH L1 reads three targets; the others' samplers still need a unit of their own.
+    const GLuint id = sh_[std::size_t(std::min<std::size_t>(std::size_t(i), sh_.size() - 1))].id();
+    bind(p, kShNames[i], GL_TEXTURE_2D, id, 4 + i);
+  }
+  glUniform1i(p.uniform("uCascades"), grid_.cascades);
+  glUniform1i(p.uniform("uResolution"), grid_.resolution);
+  glUniform1f(p.uniform("uBandCells"), kBandCells);
+  glUniform3fv(p.uniform("uCentre"), 1, glm::value_ptr(grid_.centre));
+  glUniform3fv(p.uniform("uOrigin"), grid_.cascades, glm::value_ptr(grid_.origin[0]));
+  glUniform1fv(p.uniform("uCell"), grid_.cascades, grid_.cell.data());
+  glUniform1fv(p.uniform("uDecision"), grid_.cascades, grid_.decision.data());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+}  // namespace manylight

@@ -1,0 +1,86 @@
+#pragma once
+// `--indirect caches`: the light caches of the second design document. Caches sit at the
+// nodes of nested world-space grids around the camera, the cascades of a Cache Address
+// Volume (CAV), which stores only each node's cache index; each cache holds the indirect
+// light arriving at its position from the reflective shadow maps (render/rsm.h) in a
+// spherical harmonics basis (glsl/sh_basis.glsl); each pixel interpolates its irradiance
+// from the caches at its cell's eight nodes (glsl/cache_interpolate.frag).
+//
+// GL 3.3 has no compute shaders or image atomics, so caches are allocated on the CPU, from
+// the G-buffer's positions read back: each covered pixel marks the eight nodes of its cell
+// in the smallest cascade whose decision boundary holds it, and, in the band one cell wide
+// inside that boundary (kBandCells wide), those of the next cascade too. The CAV (4 × 65³ nodes, 4
+// bytes each) is uploaded as one 3D texture; cache positions and coefficients are texels of 2D
+// textures sized from the frame's cache count.
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "gl/objects.h"
+#include "render/gbuffer.h"
+#include "scene/scene.h"
+
+namespace manylight {
+
+// The cascades of one frame. Cascade k has cells of edge cell · 2^k, `resolution` cells a
+// side, and is centred on the node nearest the camera (so a node's world position never
+// depends on where the camera is within a cell); its decision boundary is the cube of half
+// edge (resolution/2 − 2) cells centred on the camera itself, so it moves smoothly and its
+// cells' nodes always lie in the cascade.
+struct CacheGrid {
+  int cascades = 4;
+  int resolution = 64;
+  glm::vec3 centre{0.0f};
+  std::vector<glm::vec3> origin;  // per cascade: the world position of node (0, 0, 0)
+  std::vector<float> cell;        // per cascade: the cell edge
+  std::vector<float> decision;    // per cascade: the decision boundary's half edge
+  int nodesPerAxis() const { return resolution + 1; }
+};
+inline constexpr int kMaxCascades = 8;
+// Cells (of the smaller cascade) across a transition band: two, not the document's one, so
+// a camera moving a given distance a frame moves the blend half as far.
+inline constexpr float kBandCells = 2.0f;
+
+// Cascades of cell edge `cell` (at the smallest) around `centre`.
+CacheGrid cacheGrid(glm::vec3 centre, float cell, int cascades = 4, int resolution = 64);
+// The fewest cascades (at most kMaxCascades) whose largest decision boundary around `centre`
+// holds all of `bounds`.
+int cascadesToCover(glm::vec3 centre, float cell, const Bounds& bounds, int resolution = 64);
+
+// The cascade that holds `p` (cascades when none does), and where p lies in its transition
+// band: 0 outside it, rising to 1 at the decision boundary.
+int cascadeOf(const CacheGrid& grid, glm::vec3 p, float* band = nullptr);
+
+struct CacheAllocation {
+  // Per cascade, (resolution + 1)³ nodes, x fastest then y then z: a cache index, or −1.
+  std::vector<float> cav;
+  std::vector<glm::vec4> positions;  // per cache, its node's world position and cell edge
+};
+
+// The caches the covered pixels of a G-buffer read back as RGBA floats need (normal.w 0 off
+// the geometry), in the order the pixels first mark them.
+CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& position,
+                               const std::vector<float>& normal);
+
+// The caches on the GPU: the CAV, the cache positions and their coefficients.
+class LightCaches {
+ public:
+  LightCaches() = default;
+  // Uploads `a` and clears the coefficients: textures grow to hold its caches. Throws
+  // gl::GlError.
+  void upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2);
+  int count() const { return count_; }
+  // Adds one map's light to every cache (glsl/cache_gather.frag); returns the passes.
+  int gather(const GBuffer& rsm, int rowsPerPass);
+  // Adds every pixel's interpolated indirect light to `camera`'s radiance target.
+  void interpolate(const GBuffer& camera);
+
+ private:
+  CacheGrid grid_;
+  bool shL2_ = false;
+  int count_ = 0, width_ = 0, height_ = 0;
+  gl::Texture cav_, positions_;
+  std::vector<gl::Texture> sh_;  // 7 (SH L2) or 3 (SH L1) coefficient targets
+  gl::Framebuffer framebuffer_;
+};
+
+}  // namespace manylight
