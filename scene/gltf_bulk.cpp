@@ -118,6 +118,18 @@ std::int32_t index(od::value v, const F& message) {
 
 std::string str(std::size_t i) { return std::to_string(i); }
 
+// A field's key as written between its quotes, read in place: unescaping every key would
+// copy them all into the parser's string buffer, which grows with the document. A key
+// written with escapes matches none of glTF's, and is read as an unknown property.
+std::string_view keyOf(simdjson::simdjson_result<od::field>& field) {
+  od::raw_json_string raw;
+  check(field.key().get(raw));
+  const char* p = raw.raw();
+  std::size_t n = 0;
+  while (p[n] != '"') n += p[n] == '\\' ? 2 : 1;
+  return {p, n};
+}
+
 // Reads a value the loader does not use (a name, extras, another extension) to its end, so
 // that broken JSON inside the arrays taken from tinygltf is still refused as broken.
 void validate(od::value v, int depth = 0) {
@@ -140,7 +152,7 @@ void validate(od::value v, int depth = 0) {
       check(v.get_object().get(o));
       for (auto field : o) {
         std::string_view key;
-        check(field.unescaped_key().get(key));
+        key = keyOf(field);
         od::value x;
         check(field.value().get(x));
         validate(x, depth + 1);
@@ -176,7 +188,7 @@ void readNodeLight(od::value v, std::size_t i, NodeRecord& n) {
         [&] { return "node " + str(i) + ": KHR_lights_punctual is not an object"; });
   for (auto field : o) {
     std::string_view key;
-    check(field.unescaped_key().get(key));
+    key = keyOf(field);
     od::value light;
     check(field.value().get(light));
     if (key != "light") {
@@ -193,7 +205,7 @@ void readNodeExtensions(od::value v, std::size_t i, NodeRecord& n) {
   check(v.get_object().get(o), [&] { return "node " + str(i) + ": extensions is not an object"; });
   for (auto field : o) {
     std::string_view key;
-    check(field.unescaped_key().get(key));
+    key = keyOf(field);
     od::value ext;
     check(field.value().get(ext));
     if (key == "KHR_lights_punctual") {
@@ -226,7 +238,7 @@ void readNode(od::value v, std::size_t i, BulkArrays& out) {
   bool hasMatrix = false;
   for (auto field : o) {
     std::string_view key;
-    check(field.unescaped_key().get(key));
+    key = keyOf(field);
     od::value value;
     check(field.value().get(value));
     const auto numbersOf = [&](std::size_t count) {
@@ -275,7 +287,7 @@ void readSpot(od::value v, std::size_t i, LightRecord& l) {
   check(v.get_object().get(o), [&] { return "light " + str(i) + ": spot is not an object"; });
   for (auto field : o) {
     std::string_view key;
-    check(field.unescaped_key().get(key));
+    key = keyOf(field);
     od::value value;
     check(field.value().get(value));
     if (key != "innerConeAngle" && key != "outerConeAngle") {
@@ -304,7 +316,7 @@ void readLight(od::value v, std::size_t i, BulkArrays& out) {
   bool hasType = false, hasSpot = false;
   for (auto field : o) {
     std::string_view key;
-    check(field.unescaped_key().get(key));
+    key = keyOf(field);
     od::value value;
     check(field.value().get(value));
     const auto notA = [&](const char* what) {
@@ -376,7 +388,7 @@ void readLightsExtension(od::document& doc, od::value v, std::string_view json, 
   if (v.get_object().get(o) != simdjson::SUCCESS) return;  // tinygltf ignores it too
   for (auto field : o) {
     std::string_view key;
-    check(field.unescaped_key().get(key));
+    key = keyOf(field);
     if (key != "lights") continue;
     od::value lights;
     check(field.value().get(lights));
@@ -395,7 +407,7 @@ void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
   check(doc.get_object().get(top));
   for (auto field : top) {
     std::string_view key;
-    check(field.unescaped_key().get(key));
+    key = keyOf(field);
     od::value value;
     check(field.value().get(value));
     if (key == "nodes") {
@@ -410,7 +422,7 @@ void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
       if (value.get_object().get(extensions) != simdjson::SUCCESS) continue;
       for (auto ext : extensions) {
         std::string_view name;
-        check(ext.unescaped_key().get(name));
+        name = keyOf(ext);
         if (name != "KHR_lights_punctual") continue;
         od::value lights;
         check(ext.value().get(lights));

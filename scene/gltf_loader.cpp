@@ -111,6 +111,12 @@ class SceneWalker {
         if (*c >= 0 && std::size_t(*c) < parent_.size()) parent_[std::size_t(*c)] = int(n);
       }
     }
+    // At most one light a node, within the budget: stored without regrowing.
+    std::size_t lightNodes = 0;
+    for (const gltf::NodeRecord& n : bulk_.nodes) lightNodes += n.light >= 0 ? 1 : 0;
+    lightNodes = std::min(lightNodes, options_.lightBudget);
+    scene_.lights.reserve(scene_.lights.size() + lightNodes);
+    lightSources_.reserve(lightNodes);
     cameraPlaced_.assign(model_.cameras.size(), false);
     scene_.cameras.assign(model_.cameras.size(), Camera{});
     for (std::size_t i = 0; i < model_.cameras.size(); ++i) {
