@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 
 #include "base/error.h"
@@ -118,15 +119,38 @@ std::int32_t index(od::value v, const F& message) {
 
 std::string str(std::size_t i) { return std::to_string(i); }
 
-// A field's key as written between its quotes, read in place: unescaping every key would
-// copy them all into the parser's string buffer, which grows with the document. A key
-// written with escapes matches none of glTF's, and is read as an unknown property.
+bool isHex(char c) {
+  return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+}
+
+// The code unit of the \uXXXX escape at `p` (just past the backslash); −1 when malformed.
+long unit(const char* p) {
+  if (p[0] != 'u' || !isHex(p[1]) || !isHex(p[2]) || !isHex(p[3]) || !isHex(p[4])) return -1;
+  return std::strtol(std::string(p + 1, 4).c_str(), nullptr, 16);
+}
+
+// The length of the escape at `p` (just past the backslash), as JSON allows them (a high
+// surrogate only with its low one); throws Syntax for a malformed one.
+std::size_t escapeLength(const char* p) {
+  if (std::strchr("\"\\/bfnrt", p[0]) != nullptr && p[0] != '\0') return 1;
+  const long u = unit(p);
+  if (u < 0 || (u >= 0xDC00 && u <= 0xDFFF)) throw Syntax{simdjson::STRING_ERROR};
+  if (u < 0xD800 || u > 0xDBFF) return 5;
+  const long low = p[5] == '\\' ? unit(p + 6) : -1;
+  if (low < 0xDC00 || low > 0xDFFF) throw Syntax{simdjson::STRING_ERROR};
+  return 11;
+}
+
+// A field's key as written between its quotes, read in place (its escapes checked): un-
+// escaping every key would copy them all into the parser's string buffer, which grows with
+// the document. A key written with escapes matches none of glTF's, and is read as an
+// unknown property.
 std::string_view keyOf(simdjson::simdjson_result<od::field>& field) {
   od::raw_json_string raw;
   check(field.key().get(raw));
   const char* p = raw.raw();
   std::size_t n = 0;
-  while (p[n] != '"') n += p[n] == '\\' ? 2 : 1;
+  while (p[n] != '"') n += p[n] == '\\' ? 1 + escapeLength(p + n + 1) : 1;
   return {p, n};
 }
 
@@ -151,8 +175,7 @@ void validate(od::value v, int depth = 0) {
       od::object o;
       check(v.get_object().get(o));
       for (auto field : o) {
-        std::string_view key;
-        key = keyOf(field);
+        keyOf(field);
         od::value x;
         check(field.value().get(x));
         validate(x, depth + 1);
@@ -187,8 +210,7 @@ void readNodeLight(od::value v, std::size_t i, NodeRecord& n) {
   check(v.get_object().get(o),
         [&] { return "node " + str(i) + ": KHR_lights_punctual is not an object"; });
   for (auto field : o) {
-    std::string_view key;
-    key = keyOf(field);
+    const std::string_view key = keyOf(field);
     od::value light;
     check(field.value().get(light));
     if (key != "light") {
@@ -204,8 +226,7 @@ void readNodeExtensions(od::value v, std::size_t i, NodeRecord& n) {
   od::object o;
   check(v.get_object().get(o), [&] { return "node " + str(i) + ": extensions is not an object"; });
   for (auto field : o) {
-    std::string_view key;
-    key = keyOf(field);
+    const std::string_view key = keyOf(field);
     od::value ext;
     check(field.value().get(ext));
     if (key == "KHR_lights_punctual") {
@@ -237,8 +258,7 @@ void readNode(od::value v, std::size_t i, BulkArrays& out) {
   std::array<double, 16> matrix;
   bool hasMatrix = false;
   for (auto field : o) {
-    std::string_view key;
-    key = keyOf(field);
+    const std::string_view key = keyOf(field);
     od::value value;
     check(field.value().get(value));
     const auto numbersOf = [&](std::size_t count) {
@@ -286,8 +306,7 @@ void readSpot(od::value v, std::size_t i, LightRecord& l) {
   od::object o;
   check(v.get_object().get(o), [&] { return "light " + str(i) + ": spot is not an object"; });
   for (auto field : o) {
-    std::string_view key;
-    key = keyOf(field);
+    const std::string_view key = keyOf(field);
     od::value value;
     check(field.value().get(value));
     if (key != "innerConeAngle" && key != "outerConeAngle") {
@@ -315,8 +334,7 @@ void readLight(od::value v, std::size_t i, BulkArrays& out) {
   LightRecord l;
   bool hasType = false, hasSpot = false;
   for (auto field : o) {
-    std::string_view key;
-    key = keyOf(field);
+    const std::string_view key = keyOf(field);
     od::value value;
     check(field.value().get(value));
     const auto notA = [&](const char* what) {
@@ -387,8 +405,7 @@ void readLightsExtension(od::document& doc, od::value v, std::string_view json, 
   od::object o;
   if (v.get_object().get(o) != simdjson::SUCCESS) return;  // tinygltf ignores it too
   for (auto field : o) {
-    std::string_view key;
-    key = keyOf(field);
+    const std::string_view key = keyOf(field);
     if (key != "lights") continue;
     od::value lights;
     check(field.value().get(lights));
@@ -406,8 +423,7 @@ void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
   od::object top;
   check(doc.get_object().get(top));
   for (auto field : top) {
-    std::string_view key;
-    key = keyOf(field);
+    const std::string_view key = keyOf(field);
     od::value value;
     check(field.value().get(value));
     if (key == "nodes") {
@@ -421,8 +437,7 @@ void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
       od::object extensions;
       if (value.get_object().get(extensions) != simdjson::SUCCESS) continue;
       for (auto ext : extensions) {
-        std::string_view name;
-        name = keyOf(ext);
+        const std::string_view name = keyOf(ext);
         if (name != "KHR_lights_punctual") continue;
         od::value lights;
         check(ext.value().get(lights));

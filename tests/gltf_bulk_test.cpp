@@ -86,6 +86,9 @@ TEST(GltfBulk, TextThatIsNotJsonIsLeftToTinygltf) {
   EXPECT_FALSE(split("{ this is not json").parsed);
   EXPECT_FALSE(split(R"({"nodes": [{"extras": {"a": 56.0f}}]})").parsed);
   EXPECT_FALSE(split(R"({"nodes": [{"name": "\uZZZZ"}]})").parsed);
+  EXPECT_FALSE(split(R"({"nodes": [{"extras": {"\uh": 1}}]})").parsed);
+  EXPECT_FALSE(split(R"({"nodes": [{"\uD800x": 1}]})").parsed);
+  EXPECT_TRUE(split(R"({"nodes": [{"\uD83D\uDE00\n": 1, "extras": {"\u00e9": 1}}]})").parsed);
   EXPECT_FALSE(split(R"({"nodes": [{"translation": [1, 2, 3.]}]})").parsed);
   EXPECT_FALSE(split("[]").parsed);
 }
