@@ -256,9 +256,10 @@ void checkStructure(const tinygltf::Model& model, const gltf::BulkArrays& bulk,
     }
   }
   // With one parent each, a node is in a cycle exactly when climbing never ends at a root.
-  std::vector<char> state(nodes, 0);  // 0 unknown, 1 on the current climb, 2 reaches a root
+  std::vector<char> state(std::size_t(nodes), 0);  // 0 unknown, 1 climbing, 2 reaches a root
+  std::vector<int> climb;
   for (int n = 0; n < nodes; ++n) {
-    std::vector<int> climb;
+    climb.clear();
     int v = n;
     while (v >= 0 && state[v] == 0) {
       state[v] = 1;
