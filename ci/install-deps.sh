@@ -12,6 +12,7 @@ packages=(
   libglm-dev glslang-tools
   libopenimageio-dev openimageio-tools
   libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev libmeshoptimizer-dev
+  libsimdjson-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   clang libclang-rt-14-dev clang-format pmccabe
   python3 python3-numpy python3-openimageio gnuplot-nox fonts-dejavu-core

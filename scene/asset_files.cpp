@@ -64,6 +64,11 @@ bool AssetFiles::exists(const std::string& path) {
 }
 
 bool AssetFiles::read(std::vector<unsigned char>* out, std::string* err, const std::string& path) {
+  return read(out, err, path, 0);
+}
+
+bool AssetFiles::read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                      std::size_t padding) {
   fs::path resolved;
   std::string reason = check(path, &resolved);
   std::error_code ec;
@@ -96,11 +101,13 @@ bool AssetFiles::read(std::vector<unsigned char>* out, std::string* err, const s
     return false;
   }
   std::ifstream f(resolved, std::ios::binary);
-  out->resize(size);
+  out->clear();
+  out->resize(size + padding);
   if (size > 0 && !f.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) {
     *err = "cannot read";
     return false;
   }
+  out->resize(size);  // keeps the capacity, and the zero padding in it
   bytesLeft_ -= size;
   return true;
 }

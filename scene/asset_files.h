@@ -21,6 +21,10 @@ class AssetFiles {
   // says yes to everything, so that read() gets to name the problem.
   bool exists(const std::string& path);
   bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path);
+  // read(), leaving `padding` zero bytes readable past out->size() (in its capacity), for
+  // parsers that read ahead (simdjson).
+  bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+            std::size_t padding);
 
   // The first refusal (outside the folder, not a regular file, over the byte limit) as a
   // one-line reason naming the URI; empty if none. Missing files are not refusals.

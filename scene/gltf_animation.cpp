@@ -12,6 +12,7 @@
 #include "base/error.h"
 #include "scene/camera_animation.h"
 #include "scene/gltf_accessors.h"
+#include "scene/gltf_bulk.h"
 
 namespace manylight::gltf {
 namespace {
@@ -22,17 +23,17 @@ std::string channelWhere(std::size_t a, std::size_t c) {
   return "animation " + str(a) + ": channel " + str(c);
 }
 
-AnimatedNode restNode(const tinygltf::Node& node) {
+AnimatedNode restNode(const BulkArrays& bulk, const NodeRecord& node) {
   AnimatedNode an;
-  an.hasMatrix = node.matrix.size() == 16;
-  an.matrix = localTransform(node);
-  if (node.translation.size() == 3)
+  an.hasMatrix = node.matrix >= 0;
+  an.matrix = localTransform(bulk, node);
+  if (node.trs & NodeRecord::kTranslation)
     an.translation =
         glm::vec3(glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
-  if (node.rotation.size() == 4)
+  if (node.trs & NodeRecord::kRotation)
     an.rotation = glm::vec4(
         glm::dvec4(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]));
-  if (node.scale.size() == 3)
+  if (node.trs & NodeRecord::kScale)
     an.scale = glm::vec3(glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
   return an;
 }
@@ -108,13 +109,12 @@ int takeIndex(std::string_view& s) {
   return int(v);
 }
 
-Target lightTarget(const tinygltf::Model& model, std::string_view pointer,
-                   const std::string& where) {
+Target lightTarget(const BulkArrays& bulk, std::string_view pointer, const std::string& where) {
   const std::string at = where + ": pointer '" + std::string(pointer) + "': ";
   std::string_view rest = pointer.substr(kLightPrefix.size());
   const int light = takeIndex(rest);
   if (light < 0) throw SceneError(at + "no light index");
-  if (std::size_t(light) >= model.lights.size())
+  if (std::size_t(light) >= bulk.lights.size())
     throw SceneError(at + "light " + str(std::size_t(light)) + " does not exist");
   static const std::pair<std::string_view, LightPropertyTrack::Property> kProperties[] = {
       {"/color", LightPropertyTrack::Colour},
@@ -124,7 +124,8 @@ Target lightTarget(const tinygltf::Model& model, std::string_view pointer,
       {"/spot/outerConeAngle", LightPropertyTrack::OuterConeAngle}};
   for (const auto& [name, property] : kProperties) {
     if (rest != name) continue;
-    if (property >= LightPropertyTrack::InnerConeAngle && model.lights[light].type != "spot")
+    if (property >= LightPropertyTrack::InnerConeAngle &&
+        bulk.lights[std::size_t(light)].type != PunctualType::Spot)
       throw SceneError(at + "light " + str(std::size_t(light)) + " is not a spot light");
     return {Target::Light, light, property};
   }
@@ -133,7 +134,7 @@ Target lightTarget(const tinygltf::Model& model, std::string_view pointer,
                    "spot/innerConeAngle, spot/outerConeAngle)");
 }
 
-Target channelTarget(const tinygltf::Model& model, const tinygltf::AnimationChannel& ch,
+Target channelTarget(const BulkArrays& bulk, const tinygltf::AnimationChannel& ch,
                      const std::string& where) {
   AnimationTrack::Path path;
   if (ch.target_path != "pointer") {
@@ -145,7 +146,7 @@ Target channelTarget(const tinygltf::Model& model, const tinygltf::AnimationChan
   const std::string& text = ext->second.Get("pointer").Get<std::string>();
   std::string_view pointer = text;
   if (pointer.substr(0, kLightPrefix.size()) == kLightPrefix)
-    return lightTarget(model, pointer, where);
+    return lightTarget(bulk, pointer, where);
   if (pointer.substr(0, 7) != "/nodes/") return {};
   pointer.remove_prefix(7);
   const int node = takeIndex(pointer);
@@ -158,17 +159,20 @@ Target channelTarget(const tinygltf::Model& model, const tinygltf::AnimationChan
 // track read once.
 class LightReader {
  public:
-  explicit LightReader(const tinygltf::Model& model)
+  LightReader(const tinygltf::Model& model, const BulkArrays& bulk)
       : model_(model),
-        parent_(model.nodes.size(), -1),
-        nodeRefs_(model.nodes.size()),
-        lightRefs_(model.lights.size()) {
-    for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-      for (int c : model.nodes[n].children) parent_[std::size_t(c)] = int(n);
+        bulk_(bulk),
+        parent_(bulk.nodes.size(), -1),
+        nodeRefs_(bulk.nodes.size()),
+        lightRefs_(bulk.lights.size()) {
+    for (std::size_t n = 0; n < bulk.nodes.size(); ++n) {
+      const NodeRecord& node = bulk.nodes[n];
+      for (const std::int32_t* c = bulk.childrenBegin(node); c != bulk.childrenEnd(node); ++c)
+        parent_[std::size_t(*c)] = int(n);
     }
     for (std::size_t a = 0; a < model.animations.size(); ++a) {
       for (std::size_t c = 0; c < model.animations[a].channels.size(); ++c) {
-        const Target t = channelTarget(model, model.animations[a].channels[c], channelWhere(a, c));
+        const Target t = channelTarget(bulk, model.animations[a].channels[c], channelWhere(a, c));
         const Ref ref{a, c, t.what};
         if (t.kind == Target::Node && std::size_t(t.index) < nodeRefs_.size())
           nodeRefs_[std::size_t(t.index)].push_back(ref);
@@ -192,7 +196,7 @@ class LightReader {
     if (!moves && out.properties.empty()) out.light = -1;
     if (!moves) return out;
     for (auto n = chain.rbegin(); n != chain.rend(); ++n) {
-      out.chain.push_back(restNode(model_.nodes[std::size_t(*n)]));
+      out.chain.push_back(restNode(bulk_, bulk_.nodes[std::size_t(*n)]));
       for (const Ref& r : nodeRefs_[std::size_t(*n)]) {
         throwIfMatrix(out.chain.back(), *n, channelWhere(r.anim, r.channel));
         out.chain.back().tracks.push_back(track(r));
@@ -233,6 +237,7 @@ class LightReader {
   }
 
   const tinygltf::Model& model_;
+  const BulkArrays& bulk_;
   std::vector<int> parent_;
   std::vector<std::vector<Ref>> nodeRefs_, lightRefs_;
   std::map<std::pair<std::size_t, std::size_t>, AnimationTrack> tracks_;
@@ -241,38 +246,38 @@ class LightReader {
 
 }  // namespace
 
-glm::mat4 localTransform(const tinygltf::Node& node) {
-  if (node.matrix.size() == 16) {
+glm::mat4 localTransform(const BulkArrays& bulk, const NodeRecord& node) {
+  if (node.matrix >= 0) {
     glm::dmat4 m;
-    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = node.matrix[i];
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = bulk.matrices[std::size_t(node.matrix)][i];
     return glm::mat4(m);
   }
   glm::dmat4 m(1.0);
-  if (node.translation.size() == 3) {
+  if (node.trs & NodeRecord::kTranslation) {
     m = glm::translate(m,
                        glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
   }
-  if (node.rotation.size() == 4) {
+  if (node.trs & NodeRecord::kRotation) {
     const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
     m *= glm::mat4_cast(glm::normalize(q));
   }
-  if (node.scale.size() == 3) {
+  if (node.trs & NodeRecord::kScale) {
     m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
   }
   return glm::mat4(m);
 }
 
-CameraAnimation cameraAnimation(const tinygltf::Model& model, const std::vector<int>& parent,
-                                int index) {
+CameraAnimation cameraAnimation(const tinygltf::Model& model, const BulkArrays& bulk,
+                                const std::vector<int>& parent, int index) {
   std::vector<int> chain;
-  for (int n = index; n >= 0 && chain.size() <= model.nodes.size(); n = parent[n])
+  for (int n = index; n >= 0 && chain.size() <= bulk.nodes.size(); n = parent[n])
     chain.push_back(n);
   std::reverse(chain.begin(), chain.end());
   for (std::size_t a = 0; a < model.animations.size(); ++a) {
     const tinygltf::Animation& anim = model.animations[a];
     CameraAnimation out;
     for (int n : chain) {
-      AnimatedNode an = restNode(model.nodes[n]);
+      AnimatedNode an = restNode(bulk, bulk.nodes[std::size_t(n)]);
       for (std::size_t c = 0; c < anim.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = anim.channels[c];
         AnimationTrack::Path path;
@@ -291,11 +296,11 @@ CameraAnimation cameraAnimation(const tinygltf::Model& model, const std::vector<
   return {};
 }
 
-LightAnimation lightAnimation(const tinygltf::Model& model,
+LightAnimation lightAnimation(const tinygltf::Model& model, const BulkArrays& bulk,
                               const std::vector<LightSource>& sources) {
   LightAnimation out;
   if (model.animations.empty()) return out;
-  LightReader reader(model);
+  LightReader reader(model, bulk);
   for (std::size_t i = 0; i < sources.size(); ++i) {
     AnimatedLight a = reader.read(int(i), sources[i]);
     if (a.light >= 0) out.lights.push_back(std::move(a));

@@ -8,20 +8,22 @@
 
 namespace tinygltf {
 class Model;
-struct Node;
 }  // namespace tinygltf
 
 namespace manylight::gltf {
 
+struct BulkArrays;
+struct NodeRecord;
+
 // A node's local transform as the loader places it (matrix, or T · R · S in double).
-glm::mat4 localTransform(const tinygltf::Node& node);
+glm::mat4 localTransform(const BulkArrays& bulk, const NodeRecord& node);
 
 // The first animation that moves node `node` or an ancestor (translation, rotation and scale
 // channels that name the node): the chain from the root down to the node, with that
 // animation's tracks on each; empty when none. `parent`: each node's parent, −1 for roots.
 // Throws SceneError "animation A: channel C: problem" for a broken track.
-CameraAnimation cameraAnimation(const tinygltf::Model& model, const std::vector<int>& parent,
-                                int node);
+CameraAnimation cameraAnimation(const tinygltf::Model& model, const BulkArrays& bulk,
+                                const std::vector<int>& parent, int node);
 
 // Where Scene::lights[i] comes from: the node that places it and its glTF light.
 struct LightSource {
@@ -35,7 +37,7 @@ struct LightSource {
 // problem" for a broken track (or negative values, or cone angles above π/2) and for a track
 // on a node with a matrix, and "animation A: channel C: pointer 'P': problem" for a pointer
 // into KHR_lights_punctual that names no light, or no animatable property of it.
-LightAnimation lightAnimation(const tinygltf::Model& model,
+LightAnimation lightAnimation(const tinygltf::Model& model, const BulkArrays& bulk,
                               const std::vector<LightSource>& sources);
 
 }  // namespace manylight::gltf

@@ -7,6 +7,7 @@
 
 #include "base/error.h"
 #include "scene/gltf_attributes.h"
+#include "scene/gltf_bulk.h"
 #include "scene/half_edge.h"
 #include "scene/tangents.h"
 
@@ -106,10 +107,6 @@ std::vector<V> toVectors(const std::vector<float>& f, int n, bool requireFinite,
   return out;
 }
 
-glm::vec3 vec3Of(const std::vector<double>& v, glm::vec3 fallback) {
-  return v.size() >= 3 ? glm::vec3(v[0], v[1], v[2]) : fallback;
-}
-
 }  // namespace
 
 glm::mat4 withoutScale(const glm::mat4& world) {
@@ -134,8 +131,10 @@ long long triangleCount(int mode, long long count) {
   return 0;
 }
 
-Converter::Converter(const tinygltf::Model& model, Scene& scene, float creaseRadians)
+Converter::Converter(const tinygltf::Model& model, const BulkArrays& bulk, Scene& scene,
+                     float creaseRadians)
     : model_(model),
+      bulk_(bulk),
       scene_(scene),
       meshes_(model.meshes.size(), -1),
       materials_(model, scene),
@@ -256,23 +255,29 @@ Camera Converter::camera(int index) const {
 }
 
 Light Converter::light(int index, const glm::mat4& world) const {
-  checkIndex(index, model_.lights, "light");
-  const tinygltf::Light& src = model_.lights[index];
+  checkIndex(index, bulk_.lights, "light");
+  const LightRecord& src = bulk_.lights[std::size_t(index)];
   const std::string where = "light " + str(index);
   Light l;
-  if (src.type == "point") {
-    l.type = LightType::Point;
-  } else if (src.type == "spot") {
-    l.type = LightType::Spot;
-  } else if (src.type == "directional") {
-    l.type = LightType::Directional;
-  } else {
-    throw SceneError(where + ": unknown type '" + src.type + "'");
+  switch (src.type) {
+    case PunctualType::Point:
+      l.type = LightType::Point;
+      break;
+    case PunctualType::Spot:
+      l.type = LightType::Spot;
+      break;
+    case PunctualType::Directional:
+      l.type = LightType::Directional;
+      break;
+    default:
+      throw SceneError(where + ": unknown type '" + bulk_.otherTypes.at(std::size_t(index)) + "'");
   }
-  if (!src.color.empty() && src.color.size() != 3) {
-    throw SceneError(where + ": color must have 3 components, got " + str(int(src.color.size())));
+  if (src.colorCount != 0 && src.colorCount != 3) {
+    throw SceneError(where + ": color must have 3 components, got " +
+                     std::to_string(src.colorCount));
   }
-  l.colour = vec3Of(src.color, glm::vec3(1.0f));
+  l.colour =
+      src.colorCount == 3 ? glm::vec3(src.color[0], src.color[1], src.color[2]) : glm::vec3(1.0f);
   l.intensity = float(src.intensity);
   l.range = float(src.range);
   if (!std::isfinite(l.intensity) || l.intensity < 0.0f || !(l.colour == l.colour) ||
@@ -283,10 +288,10 @@ Light Converter::light(int index, const glm::mat4& world) const {
     throw SceneError(where + ": range must be a positive number");
   }
   if (l.type == LightType::Spot) {
-    l.innerConeAngle = float(src.spot.innerConeAngle);
-    l.outerConeAngle = float(src.spot.outerConeAngle);
-    if (!(src.spot.innerConeAngle >= 0.0 && src.spot.innerConeAngle < src.spot.outerConeAngle &&
-          src.spot.outerConeAngle <= kHalfPi)) {
+    l.innerConeAngle = float(src.innerConeAngle);
+    l.outerConeAngle = float(src.outerConeAngle);
+    if (!(src.innerConeAngle >= 0.0 && src.innerConeAngle < src.outerConeAngle &&
+          src.outerConeAngle <= kHalfPi)) {
       throw SceneError(where + ": spot cone angles must satisfy 0 <= inner < outer <= pi/2");
     }
   }

@@ -14,6 +14,8 @@ struct Primitive;
 
 namespace manylight::gltf {
 
+struct BulkArrays;
+
 // A primitive's mode, TRIANGLES when absent.
 int primitiveMode(const tinygltf::Primitive& p);
 
@@ -32,7 +34,9 @@ bool placeLight(Light& light, const glm::mat4& world);
 class Converter {
  public:
   // `creaseRadians`: for normals built where a primitive has none (scene/half_edge.h).
-  Converter(const tinygltf::Model& model, Scene& scene, float creaseRadians);
+  // Nodes and lights come from `bulk` (scene/gltf_bulk.h), the rest from `model`.
+  Converter(const tinygltf::Model& model, const BulkArrays& bulk, Scene& scene,
+            float creaseRadians);
 
   // Index into Scene::meshes of glTF mesh `index`. Throws SceneError.
   int mesh(int index);
@@ -45,6 +49,7 @@ class Converter {
   Primitive primitive(int meshIndex, int primIndex);
 
   const tinygltf::Model& model_;
+  const BulkArrays& bulk_;
   Scene& scene_;
   std::vector<int> meshes_;  // glTF index → scene index, −1 if not yet
   MaterialConverter materials_;

@@ -15,6 +15,7 @@
 #include "scene/asset_files.h"
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_animation.h"
+#include "scene/gltf_bulk.h"
 #include "scene/gltf_convert.h"
 #include "scene/gltf_extensions.h"
 #include "scene/gltf_parse.h"
@@ -78,21 +79,12 @@ bool decodeImageForTinygltf(tinygltf::Image* image, const int index, std::string
   }
 }
 
-int nodeLight(const tinygltf::Node& node) {
-  auto it = node.extensions.find("KHR_lights_punctual");
-  if (it == node.extensions.end() || !it->second.Has("light")) return -1;
-  const tinygltf::Value& v = it->second.Get("light");
-  if (!v.IsNumber())
-    throw SceneError("node '" + node.name + "': KHR_lights_punctual.light is not an index");
-  return v.IsInt() ? v.Get<int>() : int(v.Get<double>());
-}
-
 // Walks the node hierarchy of the default scene, placing meshes, lights and cameras.
 class SceneWalker {
  public:
-  SceneWalker(const tinygltf::Model& model, Scene& scene, gltf::Converter& convert,
-              const LoadOptions& options)
-      : model_(model), scene_(scene), convert_(convert), options_(options) {}
+  SceneWalker(const tinygltf::Model& model, const gltf::BulkArrays& bulk, Scene& scene,
+              gltf::Converter& convert, const LoadOptions& options)
+      : model_(model), bulk_(bulk), scene_(scene), convert_(convert), options_(options) {}
 
   void walk() {
     std::vector<int> roots;
@@ -104,22 +96,27 @@ class SceneWalker {
       roots = model_.scenes[s].nodes;
     } else {
       // No scenes: show every node that is nobody's child.
-      std::vector<bool> isChild(model_.nodes.size(), false);
-      for (const tinygltf::Node& n : model_.nodes) {
-        for (int c : n.children) {
-          if (c >= 0 && std::size_t(c) < isChild.size()) isChild[c] = true;
-        }
+      std::vector<bool> isChild(bulk_.nodes.size(), false);
+      for (std::int32_t c : bulk_.children) {
+        if (c >= 0 && std::size_t(c) < isChild.size()) isChild[std::size_t(c)] = true;
       }
       for (std::size_t i = 0; i < isChild.size(); ++i) {
         if (!isChild[i]) roots.push_back(int(i));
       }
     }
-    parent_.assign(model_.nodes.size(), -1);
-    for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
-      for (int c : model_.nodes[n].children) {
-        if (c >= 0 && std::size_t(c) < parent_.size()) parent_[c] = int(n);
+    parent_.assign(bulk_.nodes.size(), -1);
+    for (std::size_t n = 0; n < bulk_.nodes.size(); ++n) {
+      const gltf::NodeRecord& node = bulk_.nodes[n];
+      for (const std::int32_t* c = bulk_.childrenBegin(node); c != bulk_.childrenEnd(node); ++c) {
+        if (*c >= 0 && std::size_t(*c) < parent_.size()) parent_[std::size_t(*c)] = int(n);
       }
     }
+    // At most one light a node, within the budget: stored without regrowing.
+    std::size_t lightNodes = 0;
+    for (const gltf::NodeRecord& n : bulk_.nodes) lightNodes += n.light >= 0 ? 1 : 0;
+    lightNodes = std::min(lightNodes, options_.lightBudget);
+    scene_.lights.reserve(scene_.lights.size() + lightNodes);
+    lightSources_.reserve(lightNodes);
     cameraPlaced_.assign(model_.cameras.size(), false);
     scene_.cameras.assign(model_.cameras.size(), Camera{});
     for (std::size_t i = 0; i < model_.cameras.size(); ++i) {
@@ -127,7 +124,7 @@ class SceneWalker {
     }
     // Iterative depth-first walk. checkStructure has ruled out cycles and second parents, so
     // a node met twice is listed twice among the roots, or is both a root and a child.
-    std::vector<bool> visited(model_.nodes.size(), false);
+    std::vector<bool> visited(bulk_.nodes.size(), false);
     struct Item {
       int node;
       glm::mat4 parent;
@@ -138,7 +135,7 @@ class SceneWalker {
     while (!stack.empty()) {
       const Item item = stack.back();
       stack.pop_back();
-      if (item.node < 0 || std::size_t(item.node) >= model_.nodes.size()) {
+      if (item.node < 0 || std::size_t(item.node) >= bulk_.nodes.size()) {
         throw SceneError("node " + std::to_string(item.node) + " does not exist");
       }
       if (visited[item.node]) {
@@ -146,11 +143,11 @@ class SceneWalker {
                          " is reached twice (a scene root listed twice, or also a child)");
       }
       visited[item.node] = true;
-      const tinygltf::Node& node = model_.nodes[item.node];
-      const glm::mat4 world = item.parent * gltf::localTransform(node);
+      const gltf::NodeRecord& node = bulk_.nodes[std::size_t(item.node)];
+      const glm::mat4 world = item.parent * gltf::localTransform(bulk_, node);
       place(item.node, node, world);
-      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) {
-        stack.push_back({*c, world});
+      for (const std::int32_t* c = bulk_.childrenEnd(node); c != bulk_.childrenBegin(node);) {
+        stack.push_back({*--c, world});
       }
     }
     if (lightsSeen_ > options_.lightBudget) {
@@ -169,7 +166,7 @@ class SceneWalker {
   const std::vector<gltf::LightSource>& lightSources() const { return lightSources_; }
 
  private:
-  void place(int index, const tinygltf::Node& node, const glm::mat4& world) {
+  void place(int index, const gltf::NodeRecord& node, const glm::mat4& world) {
     const std::string where = "node " + std::to_string(index);
     for (int i = 0; i < 16; ++i) {
       if (!std::isfinite(glm::value_ptr(world)[i])) {
@@ -188,10 +185,11 @@ class SceneWalker {
       if (!cameraPlaced_[node.camera]) {
         cameraPlaced_[node.camera] = true;
         scene_.cameras[node.camera].world = gltf::withoutScale(world);
-        scene_.cameras[node.camera].animation = gltf::cameraAnimation(model_, parent_, index);
+        scene_.cameras[node.camera].animation =
+            gltf::cameraAnimation(model_, bulk_, parent_, index);
       }
     }
-    const int light = nodeLight(node);
+    const int light = node.light;
     if (light >= 0) {
       // Past the budget, lights are only counted (nothing more is stored), for the message.
       if (++lightsSeen_ <= options_.lightBudget) {
@@ -204,6 +202,7 @@ class SceneWalker {
   }
 
   const tinygltf::Model& model_;
+  const gltf::BulkArrays& bulk_;
   Scene& scene_;
   gltf::Converter& convert_;
   const LoadOptions& options_;
@@ -237,11 +236,15 @@ void checkTriangleCount(const tinygltf::Model& model, std::int64_t limit) {
 // Whole-file checks, for the parts the walk may never reach: the node graph is a forest
 // (no cycles, no node with two parents), every buffer view lies inside its buffer, and every
 // light is valid. A file that breaks them is invalid glTF, used or not.
-void checkStructure(const tinygltf::Model& model, const gltf::Converter& convert) {
-  const int nodes = int(model.nodes.size());
-  std::vector<int> parent(nodes, -1);
+void checkStructure(const tinygltf::Model& model, const gltf::BulkArrays& bulk,
+                    const gltf::Converter& convert) {
+  const int nodes = int(bulk.nodes.size());
+  std::vector<int> parent(std::size_t(nodes), -1);
   for (int n = 0; n < nodes; ++n) {
-    for (int c : model.nodes[n].children) {
+    const gltf::NodeRecord& node = bulk.nodes[std::size_t(n)];
+    for (const std::int32_t* child = bulk.childrenBegin(node); child != bulk.childrenEnd(node);
+         ++child) {
+      const int c = *child;
       if (c < 0 || c >= nodes)
         throw SceneError("node " + std::to_string(n) + ": child " + std::to_string(c) +
                          " does not exist");
@@ -253,9 +256,10 @@ void checkStructure(const tinygltf::Model& model, const gltf::Converter& convert
     }
   }
   // With one parent each, a node is in a cycle exactly when climbing never ends at a root.
-  std::vector<char> state(nodes, 0);  // 0 unknown, 1 on the current climb, 2 reaches a root
+  std::vector<char> state(std::size_t(nodes), 0);  // 0 unknown, 1 climbing, 2 reaches a root
+  std::vector<int> climb;
   for (int n = 0; n < nodes; ++n) {
-    std::vector<int> climb;
+    climb.clear();
     int v = n;
     while (v >= 0 && state[v] == 0) {
       state[v] = 1;
@@ -270,7 +274,7 @@ void checkStructure(const tinygltf::Model& model, const gltf::Converter& convert
     const std::string problem = bufferViewProblem(model, int(i));
     if (!problem.empty()) throw SceneError(problem);
   }
-  for (std::size_t i = 0; i < model.lights.size(); ++i) convert.light(int(i), glm::mat4(1.0f));
+  for (std::size_t i = 0; i < bulk.lights.size(); ++i) convert.light(int(i), glm::mat4(1.0f));
 }
 
 bool isBinaryGltf(const std::string& path) {
@@ -299,6 +303,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     const bool binary = isBinaryGltf(path);
     tinygltf::TinyGLTF parser;
     tinygltf::Model model;
+    gltf::BulkArrays bulk;
     ImageLoading loading{&options, &model};
     parser.SetImageLoader(decodeImageForTinygltf, &loading);
     // Every file read goes through AssetFiles; no shell expansion of paths (tinygltf's
@@ -323,8 +328,8 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     std::string err, warn;
     std::string failure;
     try {
-      const bool ok = gltf::parseGltfFile(parser, &model, &err, &warn, path, base, binary, files,
-                                          options.maxFileBytes);
+      const bool ok = gltf::parseGltfFile(parser, &model, &bulk, &err, &warn, path, base, binary,
+                                          files, options.maxFileBytes);
       if (!ok) {
         failure = !files.refusal().empty()   ? files.refusal()
                   : !files.missing().empty() ? files.missing()
@@ -348,11 +353,11 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     gltf::checkVersion(model.asset.version, model.asset.minVersion, model.extensionsRequired);
     scene.ignoredExtensions = gltf::ignoredExtensions(model.extensionsUsed);
     checkTriangleCount(model, options.maxTriangles);
-    gltf::Converter convert(model, scene, glm::radians(options.creaseAngleDegrees));
-    checkStructure(model, convert);
-    SceneWalker walker(model, scene, convert, options);
+    gltf::Converter convert(model, bulk, scene, glm::radians(options.creaseAngleDegrees));
+    checkStructure(model, bulk, convert);
+    SceneWalker walker(model, bulk, scene, convert, options);
     walker.walk();
-    scene.lightAnimation = gltf::lightAnimation(model, walker.lightSources());
+    scene.lightAnimation = gltf::lightAnimation(model, bulk, walker.lightSources());
   } catch (const SceneError& e) {
     throw SceneError(path + ": " + e.what());
   }

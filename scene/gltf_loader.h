@@ -1,6 +1,8 @@
 #pragma once
 // Loads glTF 2.0 (.gltf with external, embedded or data-URI buffers, and .glb) into a Scene,
-// using tinygltf for JSON, base64 and GLB parsing and OpenImageIO for texture images.
+// reading nodes and KHR_lights_punctual lights with simdjson (scene/gltf_bulk.h), the rest of
+// the document with tinygltf (JSON, base64 and GLB parsing), and texture images with
+// OpenImageIO.
 #include <cstdint>
 #include <string>
 

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "scene/asset_files.h"
+#include "scene/gltf_bulk.h"
 #include "scene/gltf_meshopt.h"
 
 namespace manylight::gltf {
@@ -118,57 +119,102 @@ std::uint32_t word(const unsigned char* p) {
   return v;
 }
 
-std::string wordBytes(std::uint32_t v) { return std::string(reinterpret_cast<char*>(&v), 4); }
+constexpr std::size_t kGlbHeader = 20;  // magic, version, length; chunk length, chunk type
 
-// The GLB `glb` with its JSON chunk amended; empty when nothing changes, or when the header
-// is not one to rewrite (tinygltf then reports the original's faults).
-std::vector<unsigned char> amendedGlb(const std::vector<unsigned char>& glb, Amendments* out) {
-  constexpr std::size_t kHeader = 20;  // magic, version, length; chunk length, chunk type
-  if (glb.size() < kHeader || std::memcmp(glb.data() + 16, "JSON", 4) != 0) return {};
+// The JSON chunk of a GLB, or an empty view when the header is not one to read (tinygltf
+// then reports the faults).
+std::string_view glbJson(const std::vector<unsigned char>& glb) {
+  if (glb.size() < kGlbHeader || std::memcmp(glb.data() + 16, "JSON", 4) != 0) return {};
   const std::size_t jsonLength = word(glb.data() + 12);
-  if (jsonLength > glb.size() - kHeader) return {};
-  const char* json = reinterpret_cast<const char*>(glb.data() + kHeader);
-  std::string amended = amendedJson({json, jsonLength}, true, out);
-  if (amended.empty()) return {};
-  amended.resize((amended.size() + 3) / 4 * 4, ' ');
-  const std::size_t rest = glb.size() - kHeader - jsonLength;
-  const std::string header = std::string(reinterpret_cast<const char*>(glb.data()), 8) +
-                             wordBytes(std::uint32_t(kHeader + amended.size() + rest)) +
-                             wordBytes(std::uint32_t(amended.size())) + "JSON";
-  std::vector<unsigned char> bytes(header.begin(), header.end());
-  bytes.insert(bytes.end(), amended.begin(), amended.end());
-  bytes.insert(bytes.end(), glb.begin() + std::ptrdiff_t(kHeader + jsonLength), glb.end());
-  return bytes;
+  if (jsonLength > glb.size() - kGlbHeader) return {};
+  return {reinterpret_cast<const char*>(glb.data() + kGlbHeader), jsonLength};
+}
+
+// Replaces the JSON chunk of `glb` (as glbJson found it) by `json`, in place: no copy of the
+// binary chunk beside the original when the new JSON is not longer.
+void replaceGlbJson(std::vector<unsigned char>& glb, std::string json) {
+  const std::size_t oldLength = word(glb.data() + 12);
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  const std::size_t rest = glb.size() - kGlbHeader - oldLength;
+  const std::size_t newSize = kGlbHeader + json.size() + rest;
+  if (json.size() > oldLength) glb.resize(newSize);
+  unsigned char* chunk = glb.data() + kGlbHeader;
+  std::memmove(chunk + json.size(), chunk + oldLength, rest);
+  std::memcpy(chunk, json.data(), json.size());
+  glb.resize(newSize);
+  // The header's total length changes by as much as the chunk, so that a total that was
+  // wrong stays wrong by as much, for tinygltf to refuse.
+  const std::uint32_t total =
+      word(glb.data() + 8) - std::uint32_t(oldLength) + std::uint32_t(json.size());
+  const std::uint32_t length = std::uint32_t(json.size());
+  std::memcpy(glb.data() + 8, &total, 4);
+  std::memcpy(glb.data() + 12, &length, 4);
+}
+
+// Splits the nodes and lights out of the file's JSON (scene/gltf_bulk.h) into *bulk, and
+// leaves the rest for tinygltf: in `bytes` for a GLB, in *json for a .gltf (`bytes` then
+// freed). False when the JSON could not be read; tinygltf then gets the file as it is.
+bool splitFile(std::vector<unsigned char>& bytes, bool binary, std::string* json, BulkArrays* bulk,
+               std::string* syntaxError) {
+  const std::string_view text =
+      binary ? glbJson(bytes)
+             : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (text.empty()) return false;
+  const std::size_t offset = std::size_t(text.data() - reinterpret_cast<const char*>(bytes.data()));
+  SplitJson split = splitJson(text, bytes.capacity() - offset);
+  if (!split.parsed) {
+    *syntaxError = split.syntaxError;
+    return false;
+  }
+  *bulk = std::move(split.bulk);
+  if (binary) {
+    replaceGlbJson(bytes, std::move(split.rest));
+  } else {
+    *json = std::move(split.rest);
+    std::vector<unsigned char>().swap(bytes);
+  }
+  return true;
 }
 
 }  // namespace
 
-bool parseGltfFile(tinygltf::TinyGLTF& parser, tinygltf::Model* model, std::string* err,
-                   std::string* warn, const std::string& path, const std::string& base, bool binary,
-                   AssetFiles& files, std::uintmax_t maxDecodedBytes) {
+bool parseGltfFile(tinygltf::TinyGLTF& parser, tinygltf::Model* model, BulkArrays* bulk,
+                   std::string* err, std::string* warn, const std::string& path,
+                   const std::string& base, bool binary, AssetFiles& files,
+                   std::uintmax_t maxDecodedBytes) {
   std::vector<unsigned char> bytes;
   std::string readError;
-  if (!files.read(&bytes, &readError, path)) {
+  if (!files.read(&bytes, &readError, path, kJsonPadding)) {
     *err = "Failed to read file: " + path + ": " + readError;
     return false;
   }
+  if (!binary && bytes.empty()) {
+    *err = "Empty file.";
+    return false;
+  }
+  std::string json, syntaxError;
+  const bool split = splitFile(bytes, binary, &json, bulk, &syntaxError);
+  if (!binary && !split) json.assign(bytes.begin(), bytes.end());
   Amendments amendments;
   bool ok = false;
   if (binary) {
-    std::vector<unsigned char> amended = amendedGlb(bytes, &amendments);
-    if (!amended.empty()) bytes = std::move(amended);
+    const std::string_view chunk = glbJson(bytes);
+    std::string amended = chunk.empty() ? "" : amendedJson(chunk, true, &amendments);
+    if (!amended.empty()) replaceGlbJson(bytes, std::move(amended));
     ok = parser.LoadBinaryFromMemory(model, err, warn, bytes.data(),
                                      static_cast<unsigned int>(bytes.size()), base);
-  } else if (bytes.empty()) {
-    *err = "Empty file.";
   } else {
-    std::string json(bytes.begin(), bytes.end());
     std::string amended = amendedJson(json, false, &amendments);
     if (!amended.empty()) json = std::move(amended);
     ok = parser.LoadASCIIFromString(model, err, warn, json.data(),
                                     static_cast<unsigned int>(json.size()), base);
   }
   if (!ok) return false;
+  if (!split) {
+    // tinygltf read what simdjson could not: one reader for nodes and lights, so refused.
+    *err = "not a valid glTF file: " + (syntaxError.empty() ? "no JSON chunk" : syntaxError);
+    return false;
+  }
   for (const Amendments::HeldIndices& h : amendments.held) {
     if (h.mesh < model->meshes.size() && h.primitive < model->meshes[h.mesh].primitives.size())
       model->meshes[h.mesh].primitives[h.primitive].indices = h.accessor;

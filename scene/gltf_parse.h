@@ -24,14 +24,17 @@ class AssetFiles;
 }
 
 namespace manylight::gltf {
+struct BulkArrays;
 
-// Parses the glTF (or, with `binary`, GLB) file at `path`, read through `files` so that it
+// Parses the glTF (or, with `binary`, GLB) file at `path`: its nodes and lights into *bulk
+// (scene/gltf_bulk.h), the rest with tinygltf into *model, read through `files` so that it
 // counts against the byte limit, as TinyGLTF::LoadASCIIFromFile / LoadBinaryFromFile would;
 // `base` is the folder its URIs are relative to. Returns tinygltf's result, its messages in
 // *err and *warn. When it succeeds, decodes the EXT_meshopt_compression views
 // (scene/gltf_meshopt.h, at most `maxDecodedBytes`), which throws SceneError.
-bool parseGltfFile(tinygltf::TinyGLTF& parser, tinygltf::Model* model, std::string* err,
-                   std::string* warn, const std::string& path, const std::string& base, bool binary,
-                   AssetFiles& files, std::uintmax_t maxDecodedBytes);
+bool parseGltfFile(tinygltf::TinyGLTF& parser, tinygltf::Model* model, BulkArrays* bulk,
+                   std::string* err, std::string* warn, const std::string& path,
+                   const std::string& base, bool binary, AssetFiles& files,
+                   std::uintmax_t maxDecodedBytes);
 
 }  // namespace manylight::gltf

@@ -1,7 +1,8 @@
 // libFuzzer target for the glTF loader (clang, -DMANYLIGHT_FUZZ=ON; run by ci/sanitize.sh).
 // Each input is written to a file (.glb when it starts with the GLB magic, else .gltf) in a
-// private folder and loaded under small limits. A SceneError is the expected way to fail;
-// anything else — another exception, a crash, a sanitizer report — is a bug, and the input
+// private folder and loaded under small limits, through the whole loader: simdjson over the
+// nodes and lights (scene/gltf_bulk.cpp), tinygltf over the rest. A SceneError is the expected way
+// to fail; anything else — another exception, a crash, a sanitizer report — is a bug, and the input
 // that caused it belongs in tests/regressions/ with a test. ci/sanitize.sh seeds it with the
 // corpus's small files and Draco and meshopt GLBs (tests/compression_test.cpp, FuzzSeedsLoad).
 #include <unistd.h>
