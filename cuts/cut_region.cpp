@@ -130,7 +130,9 @@ struct TileCutter::Cut {
               bounds.unit[l],
               n.intensity};
       it.weighted = it.error;
-      if (terms.g.lobes.on) addLobe(it, n, l);
+      if (terms.g.lobes.on)
+        addLobe(it, n, l,
+                w.parent && w.parent->representative == n.representative ? w.parent : nullptr);
       add(it);
     }
     waitingCount = 0;
@@ -143,26 +145,39 @@ struct TileCutter::Cut {
   // I⁻·that lower·cos⁻·window⁻(d⁺)/d⁺² and I⁺·that upper·cos⁺·window(d⁻)/d⁻². The
   // representative's lobe at the centre, along the mirror axis with the mean exponent, lies
   // within them too: the estimate of a folded entry's lobe, off by at most their spread.
-  void addLobe(Item& it, const Node& n, int l) const {
+  // `same`: an item with the same representative, whose lobe at the centre is this one's.
+  void addLobe(Item& it, const Node& n, int l, const Item* same) const {
     constexpr float kTwoPi = 2.0f * kPi;
     const SpecularLobes& lobes = terms.g.lobes;
     const float cosR = std::clamp(bounds.mirrorCos[l], 0.0f, 1.0f);
     const float cosRLow = std::clamp(bounds.mirrorCosLow[l], 0.0f, 1.0f);
-    const float top = (lobes.maxExponent + 2.0f) / kTwoPi * std::pow(cosR, lobes.minExponent);
+    // No light of the node on the group (upperScale 0), or no lower bound (lowerScale 0):
+    // the powers are not needed.
+    const float top = bounds.upperScale[l] <= 0.0f ? 0.0f
+                      : cosR < 1.0f
+                          ? (lobes.maxExponent + 2.0f) / kTwoPi * std::pow(cosR, lobes.minExponent)
+                          : (lobes.maxExponent + 2.0f) / kTwoPi;
     const float bottom =
-        cosRLow > 0.0f ? (lobes.minExponent + 2.0f) / kTwoPi * std::pow(cosRLow, lobes.maxExponent)
-                       : 0.0f;
+        cosRLow > 0.0f && bounds.lowerScale[l] > 0.0f
+            ? (lobes.minExponent + 2.0f) / kTwoPi * std::pow(cosRLow, lobes.maxExponent)
+            : 0.0f;
     const float slack = terms.slackRate * maxOf(n.intensity) + terms.slackFloor;
     const glm::vec3 upper = (n.intensity + slack) * (bounds.upperScale[l] * top);
     const glm::vec3 lower =
         glm::max(n.intensity - slack, glm::vec3(0.0f)) * (bounds.lowerScale[l] * bottom);
     it.lobeSpread = glm::max(upper - lower, glm::vec3(0.0f));
     it.lobeError = terms.total ? it.lobeSpread : upper;
-    const glm::vec3 towards = it.tree == 0 ? n.repPoint : n.repPoint - terms.centre;
-    const float length = glm::length(towards);
-    const float c = length > 0.0f ? std::max(glm::dot(towards, lobes.axis) / length, 0.0f) : 0.0f;
-    it.lobeUnit =
-        it.unit * kPi * ((lobes.meanExponent + 2.0f) / kTwoPi) * std::pow(c, lobes.meanExponent);
+    if (same) {
+      it.lobeUnit = same->lobeUnit;
+    } else {
+      const glm::vec3 towards = it.tree == 0 ? n.repPoint : n.repPoint - terms.centre;
+      const float length = glm::length(towards);
+      const float c = length > 0.0f ? glm::dot(towards, lobes.axis) / length : 0.0f;
+      it.lobeUnit = c > 0.0f && it.unit > 0.0f
+                        ? it.unit * kPi * ((lobes.meanExponent + 2.0f) / kTwoPi) *
+                              std::pow(c, lobes.meanExponent)
+                        : 0.0f;
+    }
     it.estimate = it.intensity * (lobes.albedo * it.unit + lobes.specular * it.lobeUnit);
     const bool bounded = !it.leaf && std::isfinite(it.measure);
     it.weighted = bounded ? weigh(lobes, it.error, it.lobeError) : glm::vec3(0.0f);

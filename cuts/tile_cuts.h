@@ -26,14 +26,18 @@
 // of it from in front folded into one linear far field, far_field.h, with their
 // linearisation error added to their bounds) and checks the rule for itself with the
 // group's bounds, which hold at every one of its pixels:
-//   node rule:  max(albedo ∘ U) ≤ ε · max(estimate), U the channel-wise largest upper
-//               bound over the cut's internal nodes;
-//   total rule: max(albedo ∘ B) ≤ ε · max(estimate − albedo ∘ B) or ≤ the absolute floor,
-//               B the sum of (upper − lower) over the cut.
-// U and B are per unit albedo (Lambert only), so the check is exactly the per-pixel rule
-// with bounds at least the pixel's own: the total rule's guarantee is kept. A pixel whose
-// check fails, a specular pixel, and every pixel of a group left to per-pixel cuts (a cut
-// over the maximum even at the finest size) walks its own cut, in a second pass over
+//   node rule:  max(albedo ∘ U + ks ∘ Uₛ) ≤ ε · max(estimate), U the channel-wise largest
+//               upper bound over the cut's internal nodes per unit albedo, Uₛ the same per
+//               unit specular colour (groups with specular pixels only);
+//   total rule: max(b) ≤ ε · max(estimate − b) or ≤ the absolute floor, b = albedo ∘ B +
+//               ks ∘ Bₛ, B and Bₛ the sums of (upper − lower) over the cut.
+// The bounds hold at every pixel of the group, so the check is exactly the per-pixel rule
+// with bounds at least the pixel's own: the total rule's guarantee is kept. Specular pixels'
+// bounds are on their Phong lobes over the group's mirror directions and exponents
+// (SpecularLobes, cut_region.cpp's addLobe); the far field takes the folded entries' lobes
+// as a constant, within their summed spread. A pixel whose check fails, and every pixel of
+// a group left to per-pixel cuts (a cut over the maximum even at the finest size), walks its
+// own cut, in a second pass over
 // just those pixels (the stencil marks them; glsl/lighting_lightcuts.frag).
 //
 // Seeds. Most of a cut's cost is the nodes above its entries, and neighbouring squares
