@@ -222,7 +222,10 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   std::vector<std::uint8_t> outside(n, 0);
   std::vector<std::size_t> pending, later;
   for (std::size_t i = 0; i < n; ++i) {
-    if (sharesCuts(px, i) && glm::dot(normalAt(px, i), normalAt(px, i)) > 0.0f)
+    // Specular pixels' lobes depend on the view, which moves: they take this frame's
+    // squares' cuts (frameCuts).
+    if (sharesCuts(px, i) && !isSpecular(px, i) &&
+        glm::dot(normalAt(px, i), normalAt(px, i)) > 0.0f)
       pending.push_back(i);
   }
   for (int level = 0; level <= kMaxCellLevel && !pending.empty(); ++level) {
@@ -302,15 +305,19 @@ void CellCuts::frameCuts(const GBufferPixels& px, const CutRule& rule, int threa
                          TileCuts& out) {
   const std::size_t n = cellOfPixel.size();
   // The frame's cuts: its cells' in the order the pixels first use them, then, for the
-  // pixels of cells whose cut is full, squares' cuts as TileCutter::cut finds them (split by
-  // surface and into quarters as needed), this frame only.
+  // pixels of cells whose cut is full and for specular pixels, squares' cuts as
+  // TileCutter::cut finds them (split by surface and into quarters as needed), this frame
+  // only.
   std::vector<std::uint8_t> made(cells_.size(), 0), full(n, 0);
   for (const int c : grownAll) made[std::size_t(c)] = 1;
   std::vector<int> frameCut(cells_.size(), -2);
   bool anyFull = false;
   for (std::size_t i = 0; i < n; ++i) {
     const int c = cellOfPixel[i];
-    if (c < 0) continue;
+    if (c < 0) {
+      if (sharesCuts(px, i) && isSpecular(px, i)) full[i] = 1, anyFull = true;
+      continue;
+    }
     int& f = frameCut[std::size_t(c)];
     if (f == -2) {
       const Cell& cell = cells_[std::size_t(c)];

@@ -79,15 +79,19 @@ Group squareAt(const GBufferPixels& px, int x0, int y0, int top,
 
 std::size_t RegionCut::entryTexels() const {
   return std::size_t(2 * (counts[0] + counts[1]) + 3 * counts[2] +
-                     (folded > 0 ? kFarFieldTexels : 0));
+                     (folded > 0 ? kFarFieldTexels : 0) + (lobes ? 2 : 0));
 }
 
 void RegionCut::writeHeader(std::uint32_t firstEntryTexel, std::uint32_t* words) const {
   const std::uint32_t header[8] = {
-      firstEntryTexel,          std::uint32_t(counts[0]),
-      std::uint32_t(counts[1]), std::uint32_t(counts[2]),
-      layout::wordOf(check.x),  layout::wordOf(check.y),
-      layout::wordOf(check.z),  std::uint32_t(folded) | std::uint32_t(zeros) << 16};
+      firstEntryTexel,
+      std::uint32_t(counts[0]),
+      std::uint32_t(counts[1]),
+      std::uint32_t(counts[2]),
+      layout::wordOf(check.x),
+      layout::wordOf(check.y),
+      layout::wordOf(check.z),
+      std::uint32_t(folded) | (lobes ? kLobesBit : 0u) | std::uint32_t(zeros) << 16};
   std::copy_n(header, 8, words);
 }
 

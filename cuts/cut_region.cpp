@@ -24,10 +24,26 @@ constexpr float kFoldMargin = 0.75f;
 // Under the node rule, a cut past half the maximum whose largest bound is still this many
 // times the target is given up as full: refining the rest would fill it anyway.
 constexpr float kHopeless = 4.0f;
+// Under the node rule, the folded entries' lobe spreads sum to at most this share of the
+// target (cuts/tile_cuts.h: the far field's lobes are a constant over the group).
+constexpr float kLobeFold = 0.5f;
 // An entry folded into the far field (beside foldBounds' kZeroEntry and kFullCone).
 constexpr float kFolded = 1.0f;
 
 float maxOf(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
+
+// A bound per unit albedo `d` and one per unit specular colour `s`, weighed by the group's
+// mean albedo and specular colour (the CPU's measure; each pixel checks with its own).
+glm::vec3 weigh(const SpecularLobes& lobes, glm::vec3 d, glm::vec3 s) {
+  return lobes.albedo * d + lobes.specular * s;
+}
+
+// Bounds per unit albedo `d` and per unit specular colour `s` added to (`total`) or joined
+// with (the node rule) `to` and `toLobe`.
+void join(bool total, glm::vec3& to, glm::vec3& toLobe, glm::vec3 d, glm::vec3 s) {
+  to = total ? to + d : glm::max(to, d);
+  toLobe = total ? toLobe + s : glm::max(toLobe, s);
+}
 
 }  // namespace
 
@@ -50,7 +66,7 @@ struct TileCutter::Cut {
   // The far field the cut starts from (a seed's, about the group's centre), and the bound of
   // the entries folded into it.
   FarField far;
-  glm::vec3 farCheck{0.0f};
+  glm::vec3 farCheck{0.0f}, farLobeCheck{0.0f}, farLobeSpread{0.0f};
   // Nodes wait here for their items, and are evaluated kLanes at once (cuts/node_lanes.h),
   // then added in the order they came.
   struct Waiting {
@@ -69,7 +85,7 @@ struct TileCutter::Cut {
   MANYLIGHT_INLINE void add(const Item& it) {
     if (it.representative < 0) return;  // empty: holds no light
     sum += it.estimate;
-    if (it.measure > 0.0f && std::isfinite(it.measure)) errorSum += it.error;
+    if (it.measure > 0.0f && std::isfinite(it.measure)) errorSum += it.weighted;
     work.items.push_back(it);
     const int k = int(work.items.size()) - 1;
     if (it.measure > 0.0f) {
@@ -103,18 +119,69 @@ struct TileCutter::Cut {
       const Waiting& w = waiting[l];
       const Node& n = cutter.node(w.tree, w.index);
       ++result.bounds;
-      add(Item{bounds.measure[l],
-               w.tree,
-               w.index,
-               {bounds.error[0][l], bounds.error[1][l], bounds.error[2][l]},
-               {bounds.estimate[0][l], bounds.estimate[1][l], bounds.estimate[2][l]},
-               bounds.dark[l] != 0.0f,
-               n.leaf(),
-               n.representative,
-               bounds.unit[l],
-               n.intensity});
+      Item it{bounds.measure[l],
+              w.tree,
+              w.index,
+              {bounds.error[0][l], bounds.error[1][l], bounds.error[2][l]},
+              {bounds.estimate[0][l], bounds.estimate[1][l], bounds.estimate[2][l]},
+              bounds.dark[l] != 0.0f,
+              n.leaf(),
+              n.representative,
+              bounds.unit[l],
+              n.intensity};
+      it.weighted = it.error;
+      if (terms.g.lobes.on)
+        addLobe(it, n, l,
+                w.parent && w.parent->representative == n.representative ? w.parent : nullptr);
+      add(it);
     }
     waitingCount = 0;
+  }
+  // The Phong lobe of the group's specular pixels (ShadingRegion::lobes) over item `it` of
+  // node `n`, lane l of `bounds`. With cosᵣ⁺ and cosᵣ⁻ the largest and smallest cosines
+  // between a mirror direction and a direction into the node (BoundLanes) and exponents in
+  // [e⁻, e⁺], the lobe (e+2)/(2π)·max(l·m, 0)^e lies within [(e⁻+2)/(2π)·cosᵣ⁻^e⁺,
+  // (e⁺+2)/(2π)·cosᵣ⁺^e⁻] at every pixel, so the node per unit specular colour lies within
+  // I⁻·that lower·cos⁻·window⁻(d⁺)/d⁺² and I⁺·that upper·cos⁺·window(d⁻)/d⁻². The
+  // representative's lobe at the centre, along the mirror axis with the mean exponent, lies
+  // within them too: the estimate of a folded entry's lobe, off by at most their spread.
+  // `same`: an item with the same representative, whose lobe at the centre is this one's.
+  void addLobe(Item& it, const Node& n, int l, const Item* same) const {
+    constexpr float kTwoPi = 2.0f * kPi;
+    const SpecularLobes& lobes = terms.g.lobes;
+    const float cosR = std::clamp(bounds.mirrorCos[l], 0.0f, 1.0f);
+    const float cosRLow = std::clamp(bounds.mirrorCosLow[l], 0.0f, 1.0f);
+    // No light of the node on the group (upperScale 0), or no lower bound (lowerScale 0):
+    // the powers are not needed.
+    const float top = bounds.upperScale[l] <= 0.0f ? 0.0f
+                      : cosR < 1.0f
+                          ? (lobes.maxExponent + 2.0f) / kTwoPi * std::pow(cosR, lobes.minExponent)
+                          : (lobes.maxExponent + 2.0f) / kTwoPi;
+    const float bottom =
+        cosRLow > 0.0f && bounds.lowerScale[l] > 0.0f
+            ? (lobes.minExponent + 2.0f) / kTwoPi * std::pow(cosRLow, lobes.maxExponent)
+            : 0.0f;
+    const float slack = terms.slackRate * maxOf(n.intensity) + terms.slackFloor;
+    const glm::vec3 upper = (n.intensity + slack) * (bounds.upperScale[l] * top);
+    const glm::vec3 lower =
+        glm::max(n.intensity - slack, glm::vec3(0.0f)) * (bounds.lowerScale[l] * bottom);
+    it.lobeSpread = glm::max(upper - lower, glm::vec3(0.0f));
+    it.lobeError = terms.total ? it.lobeSpread : upper;
+    if (same) {
+      it.lobeUnit = same->lobeUnit;
+    } else {
+      const glm::vec3 towards = it.tree == 0 ? n.repPoint : n.repPoint - terms.centre;
+      const float length = glm::length(towards);
+      const float c = length > 0.0f ? glm::dot(towards, lobes.axis) / length : 0.0f;
+      it.lobeUnit = c > 0.0f && it.unit > 0.0f
+                        ? it.unit * kPi * ((lobes.meanExponent + 2.0f) / kTwoPi) *
+                              std::pow(c, lobes.meanExponent)
+                        : 0.0f;
+    }
+    it.estimate = it.intensity * (lobes.albedo * it.unit + lobes.specular * it.lobeUnit);
+    const bool bounded = !it.leaf && std::isfinite(it.measure);
+    it.weighted = bounded ? weigh(lobes, it.error, it.lobeError) : glm::vec3(0.0f);
+    if (bounded) it.measure = maxOf(it.weighted);
   }
   MANYLIGHT_INLINE void queue(int tree, int index, const Item* parent) {
     if (cutter.node(tree, index).representative < 0) return;  // empty: holds no light
@@ -169,11 +236,17 @@ RegionCut TileCutter::cutRegion(CutWorkspace& work, const ShadingRegion& g, cons
           glm::vec3(0.0f),
           glm::vec3(0.0f),
           FarField(centre)};
+  cut.terms.mirror = ShadingRegion{
+      g.pMin, g.pMax, g.lobes.axis, g.lobes.cosSpread, g.lobes.sinSpread, SpecularLobes{}};
   if (seed) {
     cut.far = seed->far.movedTo(centre);
     cut.farCheck = seed->farCheck;
-    cut.sum += cut.far.irradianceAtCentre(g.axis) / kPi;
-    if (rule.total) cut.errorSum += cut.farCheck;
+    cut.farLobeCheck = seed->farLobeCheck;
+    cut.farLobeSpread = seed->farLobeSpread;
+    const glm::vec3 farSum = cut.far.irradianceAtCentre(g.axis) / kPi;
+    cut.sum += g.lobes.on ? weigh(g.lobes, farSum, cut.far.specular()) : farSum;
+    if (rule.total)
+      cut.errorSum += g.lobes.on ? weigh(g.lobes, cut.farCheck, cut.farLobeCheck) : cut.farCheck;
     for (const CutSeed::NodeRef& n : seed->nodes) cut.queue(n.tree, n.index, nullptr);
   } else {
     for (int t = 0; t < 3; ++t) {
@@ -220,7 +293,7 @@ bool TileCutter::refine(Cut& cut) const {
       const Item& parent = parents[count++] =
           cut.work.items[std::size_t(heap.back() & 0xffffffffu)];
       heap.pop_back();
-      if (std::isfinite(parent.measure)) errorLeft -= parent.error;
+      if (std::isfinite(parent.measure)) errorLeft -= parent.weighted;
     } while (count < kLanes / 2 && !heap.empty() &&
              !cut.holds(kMargin, cut.topOfHeap(), errorLeft) &&
              !cut.full(size + count, cut.topOfHeap()));
@@ -268,8 +341,7 @@ void TileCutter::fold(Cut& cut) const {
   for (const int k : work.settled) {
     const CutWorkspace::Item& it = work.items[std::size_t(k)];
     if (it.dark) continue;
-    if (!it.leaf)
-      result.check = rule.total ? result.check + it.error : glm::max(result.check, it.error);
+    if (!it.leaf) join(rule.total, result.check, result.lobeCheck, it.error, it.lobeError);
     const Node& l = node(it.tree, it.index);  // its representative's light: l.rep…
     const int b = batchCount++;
     batch[b] = k;
@@ -285,24 +357,60 @@ void TileCutter::fold(Cut& cut) const {
     if (batchCount == kLanes) foldBatch();
   }
   if (batchCount > 0) foldBatch();
-  result.check = rule.total ? result.check + cut.farCheck : glm::max(result.check, cut.farCheck);
+  join(rule.total, result.check, result.lobeCheck, cut.farCheck, cut.farLobeCheck);
+  foldEntries(cut);
+}
+
+void TileCutter::foldEntries(Cut& cut) const {
+  using Foldable = CutWorkspace::Foldable;
+  CutWorkspace& work = cut.work;
+  const CutRule& rule = cut.rule;
+  RegionCut& result = cut.result;
+  const SpecularLobes& lobes = cut.terms.g.lobes;
+  // A folded entry's lobe is the constant at the centre (FarField::addSpecular), within
+  // [0, its lobe bound] at every pixel: an internal node's bound is in the check already, a
+  // leaf's (exact when not folded) joins it.
   if (rule.total) {
     std::sort(work.foldable.begin(), work.foldable.end());
     for (const Foldable& f : work.foldable) {
+      const CutWorkspace::Item& it = work.items[std::size_t(f.item)];
       const glm::vec3 b = result.check + f.t;
-      if (maxOf(b) > kFoldMargin * rule.error * maxOf(cut.sum - b)) break;
+      const glm::vec3 bLobe = result.lobeCheck + (it.leaf ? it.lobeError : glm::vec3(0.0f));
+      const glm::vec3 w = lobes.on ? weigh(lobes, b, bLobe) : b;
+      if (maxOf(w) > kFoldMargin * rule.error * maxOf(cut.sum - w)) break;
       result.check = b;
-      cut.farCheck += f.t + work.items[std::size_t(f.item)].error;
+      result.lobeCheck = bLobe;
+      cut.farCheck += f.t + it.error;
+      cut.farLobeCheck += it.lobeError;
       work.shape[std::size_t(f.item)] = kFolded;
     }
   } else {
+    // The folded entries' lobes err together, each by at most its spread: their sum is one
+    // more bound in the check (a node's, to the rule), and stays within kLobeFold of the
+    // target; the entries with the least spread fold first.
+    if (lobes.on) {
+      auto spread = [&](const Foldable& f) {
+        return maxOf(lobes.specular * work.items[std::size_t(f.item)].lobeSpread);
+      };
+      std::sort(work.foldable.begin(), work.foldable.end(),
+                [&](const Foldable& a, const Foldable& b) {
+                  return std::make_pair(spread(a), a.item) < std::make_pair(spread(b), b.item);
+                });
+    }
+    const float target = kMargin * rule.error * maxOf(cut.sum);
     for (const Foldable& f : work.foldable) {
-      const glm::vec3 b = work.items[std::size_t(f.item)].error + f.t;
-      if (maxOf(b) > kMargin * rule.error * maxOf(cut.sum)) continue;
-      result.check = glm::max(result.check, b);
-      cut.farCheck = glm::max(cut.farCheck, b);
+      const CutWorkspace::Item& it = work.items[std::size_t(f.item)];
+      const glm::vec3 b = it.error + f.t;
+      const glm::vec3 w = lobes.on ? weigh(lobes, b, it.lobeError) : b;
+      if (maxOf(w) > target) continue;
+      const glm::vec3 spread = cut.farLobeSpread + it.lobeSpread;
+      if (lobes.on && maxOf(lobes.specular * spread) > kLobeFold * target) break;
+      join(false, result.check, result.lobeCheck, b, it.lobeError);
+      join(false, cut.farCheck, cut.farLobeCheck, b, it.lobeError);
+      cut.farLobeSpread = spread;
       work.shape[std::size_t(f.item)] = kFolded;
     }
+    result.lobeCheck = glm::max(result.lobeCheck, cut.farLobeSpread);
   }
 }
 
@@ -328,6 +436,7 @@ void TileCutter::emit(Cut& cut, std::vector<std::uint32_t>& entries, CutSeed* ne
     const Node& l = node(it.tree, it.index);
     const float entryShape = work.shape[std::size_t(k)];
     if (entryShape == kFolded) {
+      if (cut.terms.g.lobes.on) far.addSpecular(it.intensity * it.lobeUnit);
       if (it.tree == 0) {
         far.addDirectional(l.repPoint, it.intensity);
         continue;
@@ -374,10 +483,20 @@ void TileCutter::emit(Cut& cut, std::vector<std::uint32_t>& entries, CutSeed* ne
   if (foldCount > 0) foldLanes();
   if (summed > 0) far.add(sums, summed);
   result.folded = far.count();
+  result.lobes = cut.terms.g.lobes.on;
+  result.farSpecular = far.specular();
   if (next) {
     next->far = far;
     next->farCheck = cut.farCheck;
+    next->farLobeCheck = cut.farLobeCheck;
+    next->farLobeSpread = cut.farLobeSpread;
     return;
+  }
+  if (result.lobes) {  // TileCuts' two texels of a cut with lobes
+    for (const glm::vec3 v : {result.lobeCheck, result.farSpecular}) {
+      for (int c = 0; c < 3; ++c) entries.push_back(layout::wordOf(v[c]));
+      entries.push_back(0u);
+    }
   }
   if (!far.empty()) far.write(entries);
   for (int t = 0; t < 3; ++t) {

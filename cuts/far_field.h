@@ -83,6 +83,10 @@ class FarField {
   FarField movedTo(glm::vec3 centre) const;
   // Its irradiance at its centre for unit normal n, per channel: n · F.
   glm::vec3 irradianceAtCentre(glm::vec3 n) const;
+  // The folded entries' Phong lobes, per unit specular colour: a constant over the group,
+  // their sum at its centre (cuts/cut_region.cpp bounds it); moved as it is.
+  void addSpecular(glm::vec3 radiance) { specular_ += glm::dvec3(radiance); }
+  glm::vec3 specular() const { return glm::vec3(specular_); }
   bool empty() const { return count_ == 0; }
   int count() const { return count_; }
   // Appends the kFarFieldTexels texels.
@@ -97,6 +101,7 @@ class FarField {
     glm::dmat3 j{0.0};
   };
   std::array<Channel, 3> channels_{};  // R, G, B
+  glm::dvec3 specular_{0.0};
   int count_ = 0;
 };
 

@@ -46,14 +46,23 @@ struct RegionTerms {
   float h2;                     // its square, as 0.25 · |pMax − pMin|²
   float slackRate, slackFloor;  // node colours' decoding slack (NodeColourCoder)
   bool total;                   // the total rule: lower bounds too
+  // Where g.lobes.on: the cone of the group's mirror directions (g.lobes' axis and spread, as
+  // a region's normals), about which BoundLanes::mirrorCos is taken.
+  ShadingRegion mirror{};
 };
 
 // Per lane: the representative's shading at the centre per unit intensity, and the item's
 // measure (−1: a leaf; +inf: unbounded), error (upper, or upper − lower), estimate and
 // whether it is dark (TileCutter::cutRegion's Item).
+// Where the region has specular lobes, also (leaves too): cos⁺ · window(d⁻)/d⁻² (0 where no
+// light of the node reaches the region) and cos⁻ · window⁻(d⁺)/d⁺² (0 for spots), and the
+// largest and smallest cosines between a mirror direction of the region and a direction from
+// its box into the node's (cosᵣ⁺, cosᵣ⁻), from which cuts/cut_region.cpp bounds the node's
+// Phong lobe.
 struct BoundLanes {
   float unit[kLanes], measure[kLanes], dark[kLanes];
   float error[3][kLanes], estimate[3][kLanes];
+  float upperScale[kLanes], lowerScale[kLanes], mirrorCos[kLanes], mirrorCosLow[kLanes];
 };
 
 // Lanes [0, count) of `out` for the nodes in lanes [0, count) of `in` (count ≤ kLanes); all

@@ -220,6 +220,15 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
     for (int c = 0; c < 3; ++c)
       lower[c] = on ? vmax(intensity[c] - slack, zero) * lowerScale : zero;
   }
+  if (g.lobes.on) {
+    store(out.upperScale + l, lit ? cosUp * gUp : zero);
+    const V cosLow = widenDown(vmax(boxLower(g.axis, box), sphereLower(sphere)), g);
+    store(out.lowerScale + l, lit && gLow > 0.0f ? cosLow * gLow : zero);
+    const SphereAngles mirrorSphere = sphereAngles(r.mirror.axis, box);
+    store(out.mirrorCos + l, cosUpLanes(r.mirror, dMin, dMax, dist, mirrorSphere));
+    store(out.mirrorCosLow + l,
+          widenDown(vmax(boxLower(r.mirror.axis, box), sphereLower(mirrorSphere)), r.mirror));
+  }
   store(out.dark + l, !unbounded && maxOfLanes(upper) <= 0.0f ? one : zero);
   V error[3];
   for (int c = 0; c < 3; ++c) error[c] = r.total ? upper[c] - lower[c] : upper[c];

@@ -26,14 +26,18 @@
 // of it from in front folded into one linear far field, far_field.h, with their
 // linearisation error added to their bounds) and checks the rule for itself with the
 // group's bounds, which hold at every one of its pixels:
-//   node rule:  max(albedo ∘ U) ≤ ε · max(estimate), U the channel-wise largest upper
-//               bound over the cut's internal nodes;
-//   total rule: max(albedo ∘ B) ≤ ε · max(estimate − albedo ∘ B) or ≤ the absolute floor,
-//               B the sum of (upper − lower) over the cut.
-// U and B are per unit albedo (Lambert only), so the check is exactly the per-pixel rule
-// with bounds at least the pixel's own: the total rule's guarantee is kept. A pixel whose
-// check fails, a specular pixel, and every pixel of a group left to per-pixel cuts (a cut
-// over the maximum even at the finest size) walks its own cut, in a second pass over
+//   node rule:  max(albedo ∘ U + ks ∘ Uₛ) ≤ ε · max(estimate), U the channel-wise largest
+//               upper bound over the cut's internal nodes per unit albedo, Uₛ the same per
+//               unit specular colour (groups with specular pixels only);
+//   total rule: max(b) ≤ ε · max(estimate − b) or ≤ the absolute floor, b = albedo ∘ B +
+//               ks ∘ Bₛ, B and Bₛ the sums of (upper − lower) over the cut.
+// The bounds hold at every pixel of the group, so the check is exactly the per-pixel rule
+// with bounds at least the pixel's own: the total rule's guarantee is kept. Specular pixels'
+// bounds are on their Phong lobes over the group's mirror directions and exponents
+// (SpecularLobes, cut_region.cpp's addLobe); the far field takes the folded entries' lobes
+// as a constant, within their summed spread. A pixel whose check fails, and every pixel of
+// a group left to per-pixel cuts (a cut over the maximum even at the finest size), walks its
+// own cut, in a second pass over
 // just those pixels (the stencil marks them; glsl/lighting_lightcuts.frag).
 //
 // Seeds. Most of a cut's cost is the nodes above its entries, and neighbouring squares
@@ -72,12 +76,16 @@ struct CutRule {
 //   texel 2c      cut c: its first entry texel, then the number of entries of the
 //                 directional, point and spot trees, in that order
 //   texel 2c + 1  U (node rule) or B (total rule) per unit albedo, as float bits; how many
-//                 entries the far field holds (low 16 bits) and how many were left out
-//                 because they give nothing at any pixel of the group (high 16 bits: a spot
-//                 whose cone turns away from all of it, a light behind every normal or out
-//                 of range of the nearest pixel)
-//   from texel 2·cuts: each cut's far field (cuts/far_field.h: kFarFieldTexels texels,
-//     when it holds any entry), then its entries, directional, point, spot, as float bits:
+//                 entries the far field holds (low 15 bits), whether the group has specular
+//                 lobes (bit 15, kLobesBit), and how many entries were left out because
+//                 they give nothing at any pixel of the group (high 16 bits: a spot whose
+//                 cone turns away from all of it, a light behind every normal or out of
+//                 range of the nearest pixel)
+//   from texel 2·cuts: a cut with lobes first has two texels, its U or B per unit specular
+//     colour (the Phong lobe's bounds, below) and its far field's specular radiance per unit
+//     specular colour S (constant over the group); then its far field (cuts/far_field.h:
+//     kFarFieldTexels texels, when it holds any entry), then its entries, directional,
+//     point, spot, as float bits:
 //     directional, point: 2 texels, the representative's direction towards it (or
 //                         position) and 1/range² (0: none), then the node's intensity RGB, 0
 //                         (a spot whose cone lets all its light through to the whole group
@@ -100,19 +108,23 @@ struct TileCuts {
 };
 
 inline constexpr std::uint32_t kNoSharedCut = 0xffffffffu;
+inline constexpr std::uint32_t kLobesBit = 0x8000u;
 // Both rules hold on a pixel whose bound is at most this (near-black pixels), on the CPU and
 // in glsl/lighting_lightcuts.frag.
 inline constexpr float kAbsoluteFloor = 1e-6f;
 
 // One group's cut, as TileCutter::cutRegion finds it; its entries are written apart.
 struct RegionCut {
-  int counts[3] = {0, 0, 0};  // entries per tree, besides the far field
-  int folded = 0;             // entries in the far field
-  int zeros = 0;              // entries left out: nothing at any pixel of the group
-  glm::vec3 check{0.0f};      // U (node rule) or B (total rule) per unit albedo
-  bool perPixel = false;      // full: the group's pixels cut for themselves
-  long long bounds = 0;       // node bounds evaluated
-  float shortfall = 0.0f;     // a full cut: how far its measure was above the rule's target
+  int counts[3] = {0, 0, 0};    // entries per tree, besides the far field
+  int folded = 0;               // entries in the far field
+  int zeros = 0;                // entries left out: nothing at any pixel of the group
+  glm::vec3 check{0.0f};        // U (node rule) or B (total rule) per unit albedo
+  bool lobes = false;           // the group has specular pixels (ShadingRegion::lobes)
+  glm::vec3 lobeCheck{0.0f};    // U or B per unit specular colour
+  glm::vec3 farSpecular{0.0f};  // the far field's specular radiance per unit specular colour
+  bool perPixel = false;        // full: the group's pixels cut for themselves
+  long long bounds = 0;         // node bounds evaluated
+  float shortfall = 0.0f;       // a full cut: how far its measure was above the rule's target
 
   // Its entries' texels (far field included).
   std::size_t entryTexels() const;
@@ -134,6 +146,8 @@ struct CutSeed {
   std::vector<NodeRef> nodes;
   FarField far{glm::vec3(0.0f)};
   glm::vec3 farCheck{0.0f};
+  glm::vec3 farLobeCheck{0.0f};   // the same per unit specular colour
+  glm::vec3 farLobeSpread{0.0f};  // node rule: the sum of its entries' lobe spreads
 };
 
 // A group whose cut would exceed the maximum is split into its surfaces while its normals
@@ -163,6 +177,15 @@ struct CutWorkspace {
     int representative;
     float unit;           // the representative's shading at the centre per unit intensity
     glm::vec3 intensity;  // decoded (internal nodes) or exact (leaves)
+    // Groups with specular lobes (else 0, and `weighted` = `error`): the node's bound per
+    // unit specular colour, upper (node rule) or upper − lower (total rule), a leaf's too
+    // (folded, its lobe is estimated), the
+    // representative's lobe at the centre per unit intensity and specular colour, and
+    // `error` and `lobeError` weighed by the group's mean albedo and specular colour.
+    glm::vec3 lobeError{0.0f};
+    glm::vec3 lobeSpread{0.0f};  // upper − lower of the lobe: a folded entry's error bound
+    float lobeUnit = 0.0f;
+    glm::vec3 weighted{0.0f};
   };
   // An entry that may fold into the far field, with its T per channel.
   struct Foldable {
@@ -235,6 +258,8 @@ class TileCutter {
   bool refine(Cut& cut) const;
   // Folds the settled entries that may into the far field (bounds only).
   void fold(Cut& cut) const;
+  // fold's second half: which of the entries that may fold do, by the rule's margins.
+  void foldEntries(Cut& cut) const;
   // Writes the cut's entries, far field first, to `entries` or to `next`.
   void emit(Cut& cut, std::vector<std::uint32_t>& entries, CutSeed* next) const;
   static Node decode(const PackedTrees& packed, int tree, int i);

@@ -367,10 +367,9 @@ uniform usampler2D uCutOfPixel;
 
 // Entries hold their representative's direction or position (and 1/range², and a spot's
 // cone) themselves, so the loop reads the tile's entries in order instead of lights
-// scattered over the light texture. Pixels on a shared cut are Lambert only
-// (cuts/tile_cuts.h), so the sum is of irradiance, times albedo/π at the end. One line
-// each: GLSL 3.30 has no line continuation. Two entries per iteration, as the reference path
-// sums four lights.
+// scattered over the light texture. For a Lambert pixel the sum is of irradiance, times
+// albedo/π at the end; a specular one weighs each entry by its BRDF (specularEntries). One
+// line each: GLSL 3.30 has no line continuation. Two entries per iteration.
 #define EMBEDDED_SUM(first, count, TERM) for (k = first; k + 4 <= first + 2 * count; k += 4) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); vec4 c0 = uintBitsToFloat(texelFetch(uTileCuts, k + 1)); vec4 a1 = uintBitsToFloat(texelFetch(uTileCuts, k + 2)); vec4 c1 = uintBitsToFloat(texelFetch(uTileCuts, k + 3)); sum += TERM(a0) * c0.rgb + TERM(a1) * c1.rgb; } if (k < first + 2 * count) { vec4 a0 = uintBitsToFloat(texelFetch(uTileCuts, k)); sum += TERM(a0) * uintBitsToFloat(texelFetch(uTileCuts, k + 1)).rgb; }
 #define DIRECTIONAL_T(a) max(dot(s.normal, a.xyz), 0.0)
 #define POINT_T(a) pointFalloff(a, s.position, s.normal, unusedL)
@@ -397,29 +396,45 @@ bool tileCut() {
   uvec4 check = texelFetch(uTileCuts, 2 * int(c) + 1);
   vec3 bound = s.albedo * uintBitsToFloat(check.xyz);
   ivec3 counts = ivec3(head.yzw);
-  int folded = int(check.w & 0xffffu);
+  int folded = int(check.w & 0x7fffu);
   int zeros = int(check.w >> 16u);  // entries left out: nothing at any pixel of the group
   vec3 sum = vec3(0.0);
   int k;
   int first = int(head.x);
+  // A group with specular lobes: its bound per unit specular colour, and its far field's
+  // lobes (a constant per unit specular colour), cuts/tile_cuts.h.
+  vec3 lobes = vec3(0.0);
+  if ((check.w & 0x8000u) != 0u) {
+    bound += s.specular * tileTexel(first);
+    lobes = s.specular * tileTexel(first + 1);
+    first += 2;
+  }
   if (folded > 0) {
     sum = farField(first);
     first += kFarFieldTexels;
   }
-  EMBEDDED_SUM(first, counts.x, DIRECTIONAL_T);
-  first += 2 * counts.x;
-  EMBEDDED_SUM(first, counts.y, POINT_T);
-  first += 2 * counts.y;
-  for (k = first; k < first + 3 * counts.z; k += 3) {
-    sum += spotTexelsIrradiance(uintBitsToFloat(texelFetch(uTileCuts, k)),
-                                uintBitsToFloat(texelFetch(uTileCuts, k + 1)),
-                                uintBitsToFloat(texelFetch(uTileCuts, k + 2)), s.position,
-                                s.normal, unusedL);
-  }
-  sum *= s.albedo / kPi;
   int count = counts.x + counts.y + counts.z;
   lightEvaluations += count + min(folded, 1);  // the far field counts as one
-  iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;  // loop iterations run
+#ifdef HAS_SPECULAR
+  if (s.specular != vec3(0.0)) {
+    sum = sum * (s.albedo / kPi) + lobes + specularEntries(uTileCuts, first, counts, s);
+    iterationsLeft -= count + 6;  // loop iterations run
+  } else
+#endif
+  {
+    EMBEDDED_SUM(first, counts.x, DIRECTIONAL_T);
+    first += 2 * counts.x;
+    EMBEDDED_SUM(first, counts.y, POINT_T);
+    first += 2 * counts.y;
+    for (k = first; k < first + 3 * counts.z; k += 3) {
+      sum += spotTexelsIrradiance(uintBitsToFloat(texelFetch(uTileCuts, k)),
+                                  uintBitsToFloat(texelFetch(uTileCuts, k + 1)),
+                                  uintBitsToFloat(texelFetch(uTileCuts, k + 2)), s.position,
+                                  s.normal, unusedL);
+    }
+    sum *= s.albedo / kPi;
+    iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;
+  }
   bool holds = ruleHolds(maxOf(bound), bound, sum);
   if (holds) {
     estimateSum = sum;

@@ -75,7 +75,7 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
       (colour.coding() == NodeColourCoding::Fitted ? glsl::kLightcutsFittedColour : 0u);
   const int tileSize = distance_ ? 1 : std::max(settings.tileSize, 1);
   if (tileSize > 1) {
-    cutTiles(gbuffer, settings, tileSize);
+    cutTiles(gbuffer, view, scene.hasSpecular(), settings, tileSize);
   } else {
     tileInfo_ = {};
     cutMs_ = 0.0;
@@ -134,14 +134,18 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
   glActiveTexture(GL_TEXTURE0);
 }
 
-void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& settings,
-                               int tileSize) const {
+void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const View& view, bool specular,
+                               const LightcutsSettings& settings, int tileSize) const {
   const std::size_t plane = std::size_t(width_) * height_ * 4;
-  readback_.resize(3 * plane);
+  // With specular materials the albedo too: specular pixels share cuts bounded over their
+  // lobes, weighed by it (cuts/pixel_groups.h).
+  const int planes = specular ? 4 : 3;
+  readback_.resize(std::size_t(planes) * plane);
   glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.geometryFramebuffer().id());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  const GBuffer::Target targets[3] = {GBuffer::kPosition, GBuffer::kNormal, GBuffer::kSpecular};
-  for (int i = 0; i < 3; ++i) {
+  const GBuffer::Target targets[4] = {GBuffer::kPosition, GBuffer::kNormal, GBuffer::kSpecular,
+                                      GBuffer::kAlbedo};
+  for (int i = 0; i < planes; ++i) {
     glReadBuffer(GL_COLOR_ATTACHMENT0 + targets[i]);
     glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, readback_.data() + i * plane);
   }
@@ -150,6 +154,12 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const LightcutsSettings& 
   const auto start = std::chrono::steady_clock::now();  // the G-buffer is here
   GBufferPixels pixels{width_, height_, readback_.data(), readback_.data() + plane,
                        readback_.data() + 2 * plane};
+  if (specular) {
+    pixels.albedo = readback_.data() + 3 * plane;
+    pixels.eye = view.eye;
+    pixels.forward = view.forward;
+    pixels.orthographic = view.orthographic;
+  }
   const CutRule rule{settings.error, settings.mode == ErrorMode::Total,
                      std::clamp(settings.maxCut, 1, kMaxCutLimit)};
   const int threads = int(std::max(1u, std::thread::hardware_concurrency()));

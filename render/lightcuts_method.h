@@ -85,7 +85,8 @@ class LightcutsMethod {
   const gl::Program& program(const std::vector<std::string>& defines) const;
 
   // Finds the cuts of tileSize × tileSize squares on the CPU, from the G-buffer read back.
-  void cutTiles(const GBuffer& gbuffer, const LightcutsSettings& settings, int tileSize) const;
+  void cutTiles(const GBuffer& gbuffer, const View& view, bool specular,
+                const LightcutsSettings& settings, int tileSize) const;
 
   PackedTrees layout_;  // bases, leaf counts, colour coding (the words are dropped after upload)
   gl::TextureBuffer nodes_;
