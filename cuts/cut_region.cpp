@@ -315,7 +315,6 @@ bool TileCutter::refine(Cut& cut) const {
 // cut stopped at; under the total rule the smallest T fold first while the summed bound
 // stays within kFoldMargin of the rule.
 void TileCutter::fold(Cut& cut) const {
-  using Foldable = CutWorkspace::Foldable;
   CutWorkspace& work = cut.work;
   const CutRule& rule = cut.rule;
   RegionCut& result = cut.result;

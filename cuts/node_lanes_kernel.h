@@ -285,7 +285,7 @@ MANYLIGHT_INLINE inline void foldBoundLanes(const RegionTerms& r, const FoldLane
                                             float* out) {
   constexpr float kPi = 3.14159265358979323846f;
   const ShadingRegion& g = r.g;
-  const V zero = splat(0.0f), one = splat(1.0f);
+  const V zero = splat(0.0f);
   const V tree = load(in.tree + l);
   const auto directional = tree == 0.0f, spot = tree == 2.0f;
   V rep[3], axis[3];

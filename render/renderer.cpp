@@ -132,6 +132,16 @@ int Renderer::lightReference(const View& view, const FrameSettings& settings) {
   return passes;
 }
 
+void Renderer::lightIndirect(const View& view, const IndirectSettings& settings,
+                             FrameStats* stats) {
+  if (!indirect_ || indirect_->rsmSize() != settings.rsmSize)
+    indirect_ = std::make_unique<IndirectLight>(settings.rsmSize);
+  const IndirectStats indirect =
+      indirect_->light(scene_, gpu_, geometry_, gbuffer_, view, indirectLights_, settings);
+  if (stats) stats->indirect = indirect;
+  glBindVertexArray(emptyVao_.id());
+}
+
 Image Renderer::render(const View& view, const FrameSettings& settings, FrameStats* stats) {
   glFinish();
   const auto start = std::chrono::steady_clock::now();
@@ -153,14 +163,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
       }
     };
     light();
-    if (settings.indirect.mode != Indirect::None) {
-      if (!indirect_ || indirect_->rsmSize() != settings.indirect.rsmSize)
-        indirect_ = std::make_unique<IndirectLight>(settings.indirect.rsmSize);
-      const IndirectStats indirect = indirect_->light(scene_, gpu_, geometry_, gbuffer_, view,
-                                                      indirectLights_, settings.indirect);
-      if (stats) stats->indirect = indirect;
-      glBindVertexArray(emptyVao_.id());
-    }
+    if (settings.indirect.mode != Indirect::None) lightIndirect(view, settings.indirect, stats);
     // The opaque frame's cut statistics, before blended layers light the G-buffer again.
     if (stats && lightcuts_ && settings.readCutStats) stats->cuts = lightcuts_->cutStats();
     if (stats && octree_ && settings.octreeStats) {

@@ -122,6 +122,8 @@ class Renderer {
 
  private:
   int lightReference(const View& view, const FrameSettings& settings);
+  // Adds the frame's indirect light (FrameSettings::indirect) to the radiance target.
+  void lightIndirect(const View& view, const IndirectSettings& settings, FrameStats* stats);
   // The G-buffer pass of `aov`'s variant, made at its first use.
   const GeometryPass& aovPass(Aov aov);
 

@@ -286,20 +286,27 @@ bool isBinaryGltf(const std::string& path) {
 
 }  // namespace
 
+namespace {
+
+// Throws SceneError when `path` is not a regular file that can be opened: opening a FIFO (or
+// a device) would block until someone writes to it.
+void checkOpenable(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+    throw SceneError("not a regular file");
+  }
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) throw SceneError(std::string("cannot open: ") + std::strerror(errno));
+}
+
+}  // namespace
+
 Scene loadGltf(const std::string& path, const LoadOptions& options) {
   Scene scene;
   scene.name = path;
   try {
-    {
-      // Opening a FIFO (or a device) would block until someone writes to it.
-      std::error_code ec;
-      const std::filesystem::file_status st = std::filesystem::status(path, ec);
-      if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
-        throw SceneError("not a regular file");
-      }
-      std::ifstream probe(path, std::ios::binary);
-      if (!probe) throw SceneError(std::string("cannot open: ") + std::strerror(errno));
-    }
+    checkOpenable(path);
     const bool binary = isBinaryGltf(path);
     tinygltf::TinyGLTF parser;
     tinygltf::Model model;
