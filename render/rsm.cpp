@@ -17,13 +17,13 @@ struct Sample {
   glm::dvec3 p, n;
 };
 
-// Up to kRsmChoiceSamples covered pixels on a regular grid.
+// Up to `samples` covered pixels on a regular grid.
 std::vector<Sample> samplePixels(const std::vector<float>& position,
-                                 const std::vector<float>& normal) {
+                                 const std::vector<float>& normal, std::size_t samples) {
   const std::size_t pixels = normal.size() / 4;
   std::size_t covered = 0;
   for (std::size_t i = 0; i < pixels; ++i) covered += normal[4 * i + 3] != 0.0f;
-  const std::size_t step = std::max<std::size_t>(1, covered / kRsmChoiceSamples);
+  const std::size_t step = std::max<std::size_t>(1, covered / samples);
   std::vector<Sample> out;
   for (std::size_t i = 0, k = 0; i < pixels; ++i) {
     if (normal[4 * i + 3] == 0.0f) continue;
@@ -41,7 +41,10 @@ double luminance(glm::dvec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c
 
 RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<float>& position,
                           const std::vector<float>& normal, int count) {
-  const std::vector<Sample> samples = samplePixels(position, normal);
+  const double budget = kRsmChoiceEvaluations / double(std::max<std::size_t>(lights.size(), 1));
+  const std::size_t sampleCount =
+      std::size_t(std::clamp(budget, double(kRsmChoiceMinSamples), double(kRsmChoiceSamples)));
+  const std::vector<Sample> samples = samplePixels(position, normal, sampleCount);
   std::vector<double> flux(lights.size(), 0.0);
   const int threads =
       std::max(1, std::min(int(std::thread::hardware_concurrency()), int(lights.size() / 256) + 1));

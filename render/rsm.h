@@ -20,11 +20,14 @@ struct RsmChoice {
   double fluxShare = 1.0;
 };
 
-// Pixels chooseRsmLights samples at most, on a regular grid over the image.
+// Pixels chooseRsmLights samples at most, on a regular grid over the image: 256, or fewer
+// (down to 32) where lights × samples would pass kRsmChoiceEvaluations.
 inline constexpr int kRsmChoiceSamples = 256;
+inline constexpr int kRsmChoiceMinSamples = 32;
+inline constexpr double kRsmChoiceEvaluations = 1 << 22;
 
 // The `count` spot and directional lights that send the most flux into the view: the
-// largest Σ of irradiance (luminance) over up to kRsmChoiceSamples covered pixels of the
+// largest Σ of irradiance (luminance) over the sampled covered pixels of the
 // frame's G-buffer, read back as RGBA floats (`position`, `normal`; normal.w 0 off the
 // geometry). Ties go to the lower index. Runs on every core.
 RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<float>& position,
