@@ -207,6 +207,7 @@ TEST(Indirect, ColourBleedsFromTheWallsOntoTheFloor) {
 // With many lights, maps go to the spot and directional lights sending the most flux into
 // the view, and --stats says what share of the flux they cover.
 TEST(Indirect, MapsGoToTheLightsWithTheMostFlux) {
+  context();
   const std::string path =
       (std::filesystem::temp_directory_path() / "manylight_indirect_many.glb").string();
   CornellOptions options;
