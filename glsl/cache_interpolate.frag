@@ -42,13 +42,16 @@ vec3 cacheIrradiance(int cache, vec3 n) {
   return max(e, vec3(0.0));
 }
 
-// Trilinear over the caches present at the eight nodes around p in cascade k.
+// Trilinear over the caches present at the eight nodes around p in cascade k, those behind
+// the pixel's surface (below its tangent plane) left out where any lies in front: a cache
+// behind a wall sees the light in front of the wall's other side, and without visibility
+// it would leak through.
 vec3 cascadeIrradiance(int k, vec3 p, vec3 n) {
   vec3 g = (p - uOrigin[k]) / uCell[k];
   ivec3 base = ivec3(floor(g));
   vec3 f = g - vec3(base);
-  vec3 sum = vec3(0.0);
-  float weights = 0.0;
+  vec3 sum = vec3(0.0), behind = vec3(0.0);
+  float weights = 0.0, behindWeights = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
     ivec3 o = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
     ivec3 node = clamp(base + o, ivec3(0), ivec3(uResolution));
@@ -56,10 +59,17 @@ vec3 cascadeIrradiance(int k, vec3 p, vec3 n) {
     if (cache < 0.0) continue;
     vec3 t = mix(1.0 - f, f, vec3(o));
     float w = t.x * t.y * t.z;
-    sum += w * cacheIrradiance(int(cache), n);
-    weights += w;
+    vec3 e = cacheIrradiance(int(cache), n);
+    if (dot(uOrigin[k] + vec3(node) * uCell[k] - p, n) >= 0.0) {
+      sum += w * e;
+      weights += w;
+    } else {
+      behind += w * e;
+      behindWeights += w;
+    }
   }
-  return weights > 0.0 ? sum / weights : vec3(0.0);
+  if (weights > 0.0) return sum / weights;
+  return behindWeights > 0.0 ? behind / behindWeights : vec3(0.0);
 }
 
 void main() {

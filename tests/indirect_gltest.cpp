@@ -270,7 +270,7 @@ CacheError cacheError(const Scene& scene, bool shL2, const char* name) {
 // docs/indirect.md's table. The targets (mean ≤ 0.5%, p99 ≤ 2% of the total) are not
 // met: caches off the surfaces miss the near field where walls meet (the exact sum's light
 // from the texels beside a pixel), and SH L2 leaks some of a close wall's light into the
-// hemisphere it does not face. Measured: SH L1 mean 10.2%, p99 30%; SH L2 mean 2.7%, p99 28%.
+// hemisphere it does not face. Measured: SH L1 mean 10.6%, p99 28%; SH L2 mean 2.8%, p99 26%.
 TEST(Indirect, CachesMatchExact) {
   const CacheError l1 = cacheError(cornell(), false, "one spot");
   const CacheError l2 = cacheError(cornell(), true, "one spot");
