@@ -45,7 +45,7 @@ void main() {
       shBasis(omega, y);
       vec3 f = flux.rgb * s;
       // Written out: llvmpipe counts an inner loop's iterations against the invocation's
-      // 65,535 (render/indirect_light.cpp's rowsPerPass).
+      // 65,535 (render/rsm.h, drawRsmRowPasses).
       c[0] += f * y[0];
       c[1] += f * y[1];
       c[2] += f * y[2];

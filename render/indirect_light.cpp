@@ -49,10 +49,6 @@ void renderFlux(const GBuffer& rsm, const Light& light, const RsmView& view) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-// Rows of map texels a gather pass takes: llvmpipe ends a shader invocation's loops after
-// 65,535 iterations in all, and the inner loop runs once per texel of a row.
-int rowsPerPass(int size) { return std::max(1, 65000 / std::max(size, 1) - 1); }
-
 // Adds the map's texels' light to the camera's radiance target; returns the passes.
 int gather(const GBuffer& camera, const GBuffer& rsm) {
   const gl::Program& p =
@@ -67,19 +63,8 @@ int gather(const GBuffer& camera, const GBuffer& rsm) {
   bindTarget(p, "uPosition", camera.target(GBuffer::kPosition), 0);
   bindTarget(p, "uNormal", camera.target(GBuffer::kNormal), 1);
   bindTarget(p, "uAlbedo", camera.target(GBuffer::kAlbedo), 2);
-  bindTarget(p, "uRsmPosition", rsm.target(GBuffer::kPosition), 3);
-  bindTarget(p, "uRsmNormal", rsm.target(GBuffer::kNormal), 4);
-  bindTarget(p, "uRsmFlux", rsm.target(GBuffer::kRadiance), 5);
-  glUniform1i(p.uniform("uRsmSize"), rsm.width());
-  const int rows = rowsPerPass(rsm.width());
-  int passes = 0;
-  for (int first = 0; first < rsm.height(); first += rows, ++passes) {
-    glUniform1i(p.uniform("uFirstRow"), first);
-    glUniform1i(p.uniform("uRows"), std::min(rows, rsm.height() - first));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
+  const int passes = drawRsmRowPasses(p, rsm, 3);
   glDisable(GL_BLEND);
-  glActiveTexture(GL_TEXTURE0);
   return passes;
 }
 
@@ -148,8 +133,7 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     stats.rsmTexels += reflectingTexels(rsm_);
     stats.rsmMs += msSince(start);
     start = Clock::now();
-    stats.passes +=
-        caches ? caches_->gather(rsm_, rowsPerPass(rsm_.width())) : gather(camera, rsm_);
+    stats.passes += caches ? caches_->gather(rsm_) : gather(camera, rsm_);
     glFinish();
     stats.gatherMs += msSince(start);
     ++stats.rsmLights;

@@ -5,6 +5,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/context.h"
+#include "render/rsm.h"
 
 namespace manylight {
 
@@ -155,7 +156,7 @@ void LightCaches::upload(const CacheGrid& grid, const CacheAllocation& a, bool s
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-int LightCaches::gather(const GBuffer& rsm, int rowsPerPass) {
+int LightCaches::gather(const GBuffer& rsm) {
   if (count_ == 0) return 0;
   const gl::Program& p =
       gl::cachedProgram("fullscreen.vert", "cache_gather.frag", basisDefines(shL2_), kShOutputs);
@@ -167,19 +168,9 @@ int LightCaches::gather(const GBuffer& rsm, int rowsPerPass) {
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
   bind(p, "uCachePosition", GL_TEXTURE_2D, positions_.id(), 0);
-  bind(p, "uRsmPosition", GL_TEXTURE_2D, rsm.target(GBuffer::kPosition).id(), 1);
-  bind(p, "uRsmNormal", GL_TEXTURE_2D, rsm.target(GBuffer::kNormal).id(), 2);
-  bind(p, "uRsmFlux", GL_TEXTURE_2D, rsm.target(GBuffer::kRadiance).id(), 3);
   glUniform1i(p.uniform("uCacheCount"), count_);
-  glUniform1i(p.uniform("uRsmSize"), rsm.width());
-  int passes = 0;
-  for (int first = 0; first < rsm.height(); first += rowsPerPass, ++passes) {
-    glUniform1i(p.uniform("uFirstRow"), first);
-    glUniform1i(p.uniform("uRows"), std::min(rowsPerPass, rsm.height() - first));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
+  const int passes = drawRsmRowPasses(p, rsm, 1);
   glDisable(GL_BLEND);
-  glActiveTexture(GL_TEXTURE0);
   return passes;
 }
 

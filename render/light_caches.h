@@ -70,7 +70,7 @@ class LightCaches {
   void upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2);
   int count() const { return count_; }
   // Adds one map's light to every cache (glsl/cache_gather.frag); returns the passes.
-  int gather(const GBuffer& rsm, int rowsPerPass);
+  int gather(const GBuffer& rsm);
   // Adds every pixel's interpolated indirect light to `camera`'s radiance target.
   void interpolate(const GBuffer& camera);
 

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "bake/parallel.h"
+#include "gl/context.h"
 #include "scene/shading_model.h"
 
 namespace manylight {
@@ -101,6 +102,28 @@ RsmView rsmView(const Light& light, const Bounds& bounds, int size) {
   const float texel = 2.0f * std::tan(half) / float(size);
   r.texelScale = texel * texel;
   return r;
+}
+
+using namespace gl::api;
+
+int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUnit) {
+  const GBuffer::Target targets[] = {GBuffer::kPosition, GBuffer::kNormal, GBuffer::kRadiance};
+  const char* names[] = {"uRsmPosition", "uRsmNormal", "uRsmFlux"};
+  for (int i = 0; i < 3; ++i) {
+    glActiveTexture(GLenum(GL_TEXTURE0 + firstUnit + i));
+    glBindTexture(GL_TEXTURE_2D, rsm.target(targets[i]).id());
+    glUniform1i(program.uniform(names[i]), firstUnit + i);
+  }
+  glUniform1i(program.uniform("uRsmSize"), rsm.width());
+  const int rows = std::max(1, 65000 / std::max(rsm.width(), 1) - 1);
+  int passes = 0;
+  for (int first = 0; first < rsm.height(); first += rows, ++passes) {
+    glUniform1i(program.uniform("uFirstRow"), first);
+    glUniform1i(program.uniform("uRows"), std::min(rows, rsm.height() - first));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  return passes;
 }
 
 }  // namespace manylight

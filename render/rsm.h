@@ -5,6 +5,8 @@
 // Point lights get none (they would need six maps); neither do lights beyond the chosen few.
 #include <vector>
 
+#include "gl/objects.h"
+#include "render/gbuffer.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
@@ -46,5 +48,12 @@ struct RsmView {
 // orthographic view along it covering the scene's bounding sphere.
 RsmView rsmView(const Light& light, const Bounds& bounds, int size);
 inline constexpr float kMaxRsmHalfAngle = 1.3089969f;  // 75°
+
+// Draws `program` (in use, its target and other inputs bound) once per band of the map's
+// rows: the map's position, normal and flux targets on units `firstUnit` … `firstUnit` + 2
+// as uRsmPosition, uRsmNormal, uRsmFlux, its size as uRsmSize, and each band as uFirstRow
+// and uRows. A band has as many rows as keep a loop over its texels under llvmpipe's
+// 65,535 iterations per invocation. Returns the passes.
+int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUnit);
 
 }  // namespace manylight
