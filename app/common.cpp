@@ -240,6 +240,8 @@ nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectSta
           {"cascades", s.cascades},
           {"cache_cell", s.cacheCell},
           {"allocate_ms", s.allocateMs},
+          {"near_passes", s.nearPasses},
+          {"near_ms", s.nearMs},
           {"interpolate_ms", s.interpolateMs}};
 }
 

@@ -4,7 +4,9 @@
 // the coefficient targets. A texel of flux Φ and area A at y, normal n_t, sends towards the
 // cache at q, along ω = (y − q)/d,
 //   Φ · max(n_t·(−ω), 0) / (π · (d² + A/π))  per unit max(n·ω, 0),
-// so a pixel's irradiance E(n) = Σ that · max(n·ω, 0), as glsl/indirect_exact.frag sums it.
+// so a pixel's irradiance E(n) = Σ that · max(n·ω, 0), as glsl/indirect_exact.frag sums it;
+// times farWeight(d, r), r the larger of the map's uNearRadius and kNearCells of the cache's
+// cells: the pixels gather the rest themselves (render/near_field.h).
 uniform sampler2D uCachePosition;
 uniform int uCacheCount;
 uniform sampler2D uRsmPosition;
@@ -13,6 +15,7 @@ uniform sampler2D uRsmFlux;
 uniform int uRsmSize;
 uniform int uFirstRow;
 uniform int uRows;
+uniform float uNearRadius;
 
 out vec4 oSh0;
 out vec4 oSh1;
@@ -26,7 +29,9 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   int width = textureSize(uCachePosition, 0).x;
   if (px.y * width + px.x >= uCacheCount) discard;
-  vec3 q = texelFetch(uCachePosition, px, 0).xyz;
+  vec4 node = texelFetch(uCachePosition, px, 0);  // position, cell edge
+  vec3 q = node.xyz;
+  float r = max(uNearRadius, kNearCells * node.w);
   vec3 c[9] = vec3[9](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
                       vec3(0.0), vec3(0.0), vec3(0.0));
   for (int row = uFirstRow; row < uFirstRow + uRows; ++row) {
@@ -39,7 +44,8 @@ void main() {
       float d2 = max(dot(w, w), kMinDistanceSquared);
       float invD = inversesqrt(d2);
       vec3 omega = w * invD;
-      float s = max(-dot(nt, omega), 0.0) / (kPi * (d2 + flux.w / kPi));
+      float s = max(-dot(nt, omega), 0.0) / (kPi * (d2 + flux.w / kPi)) *
+                farWeight(d2 * invD, r);
       if (s == 0.0) continue;
       float y[9];
       shBasis(omega, y);

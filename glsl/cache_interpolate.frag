@@ -1,8 +1,8 @@
 // `--indirect caches` (render/light_caches.h): each pixel's irradiance interpolated from the
 // caches at the eight nodes of its cell in its cascade of the Cache Address Volume, each
 // cache's spherical harmonics (glsl/sh_basis.glsl) evaluated for the pixel's normal; in the
-// band uBandCells cells wide inside a cascade's decision boundary, blended with the next cascade's
-// linearly across the band. Added (blend ONE, ONE) to the radiance target: albedo/π · E.
+// transition band (glsl/cache_cascade.glsl), blended with the next cascade's linearly across
+// the band. Added (blend ONE, ONE) to the radiance target: albedo/π · E.
 uniform sampler2D uPosition;
 uniform sampler2D uNormal;
 uniform sampler2D uAlbedo;
@@ -14,13 +14,8 @@ uniform sampler2D uSh3;
 uniform sampler2D uSh4;
 uniform sampler2D uSh5;
 uniform sampler2D uSh6;
-uniform int uCascades;
-uniform int uResolution;     // R: cells per axis of a cascade
-uniform float uBandCells;    // a transition band's width in cells
-uniform vec3 uCentre;        // where the decision boundaries are centred (the camera)
-uniform vec3 uOrigin[8];     // per cascade, its node (0, 0, 0)
-uniform float uCell[8];      // per cascade, its cell edge
-uniform float uDecision[8];  // per cascade, the half edge of its decision boundary
+uniform int uResolution;  // R: cells per axis of a cascade
+uniform vec3 uOrigin[8];  // per cascade, its node (0, 0, 0)
 
 out vec4 oRadiance;
 
@@ -77,15 +72,10 @@ void main() {
   vec4 normal = texelFetch(uNormal, px, 0);
   if (normal.w == 0.0) discard;
   vec3 p = texelFetch(uPosition, px, 0).xyz;
-  vec3 d3 = abs(p - uCentre);
-  float d = max(d3.x, max(d3.y, d3.z));
-  int k = 0;
-  while (k < uCascades && d > uDecision[k]) ++k;
+  float band;
+  int k = cacheCascade(p, band);
   if (k == uCascades) discard;  // beyond the largest cascade: no caches
   vec3 e = cascadeIrradiance(k, p, normal.xyz);
-  float width = uBandCells * uCell[k];
-  float band = (d - (uDecision[k] - width)) / width;
-  if (band > 0.0 && k + 1 < uCascades)
-    e = mix(e, cascadeIrradiance(k + 1, p, normal.xyz), band);
+  if (band > 0.0) e = mix(e, cascadeIrradiance(k + 1, p, normal.xyz), band);
   oRadiance = vec4(texelFetch(uAlbedo, px, 0).rgb / kPi * e, 0.0);
 }

@@ -7,6 +7,7 @@
 #include "bake/octree_layout.h"
 #include "cuts/far_field.h"
 #include "cuts/tile_cuts.h"
+#include "render/cache_layout.h"
 #include "scene/shading_model.h"
 
 namespace manylight::glsl {
@@ -91,12 +92,16 @@ std::vector<ProgramVariants> programs() {
   const std::vector<std::string> sh = {"oSh0", "oSh1", "oSh2", "oSh3", "oSh4", "oSh5", "oSh6"};
   out.push_back({"fullscreen.vert", "cache_gather.frag", sh, {{}, {"SH_L2"}}});
   out.push_back({"fullscreen.vert", "cache_interpolate.frag", {"oRadiance"}, {{}, {"SH_L2"}}});
+  out.push_back({"fullscreen.vert", "cache_near.frag", {"oRadiance"}, {{}}});
   return out;
 }
 
 std::string layoutPrelude() {
   std::string out;
   out += constLine("float", "kPi", floatLiteral(shading::kPi));
+  out += constLine("float", "kBandCells", floatLiteral(kBandCells));
+  out += constLine("float", "kNearCells", floatLiteral(kNearCells));
+  out += constLine("float", "kPlaneTolerance", floatLiteral(kPlaneTolerance));
   out += constLine("float", "kMinDistanceSquared", floatLiteral(shading::kMinDistanceSquared));
   out += constLine("float", "kDielectricF0", floatLiteral(shading::kDielectricF0));
   out += constLine("float", "kMaxPhongExponent", floatLiteral(shading::kMaxPhongExponent));

@@ -69,8 +69,7 @@ int gather(const GBuffer& camera, const GBuffer& rsm) {
 }
 
 // Map texels that reflect flux (flux.w, the patch area, is non-zero).
-long long reflectingTexels(const GBuffer& rsm) {
-  const std::vector<float> flux = rsm.read(GBuffer::kRadiance);
+long long reflectingTexels(const std::vector<float>& flux) {
   long long n = 0;
   for (std::size_t i = 3; i < flux.size(); i += 4) n += flux[i] != 0.0f;
   return n;
@@ -123,6 +122,7 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     stats.cacheCell = grid.cell[0];
     stats.allocateMs = msSince(start);
   }
+  near_.clear();
   for (int index : choice.lights) {
     const Light& light = lights[std::size_t(index)];
     start = Clock::now();
@@ -130,15 +130,26 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     geometry.draw(scene, gpu, rsm_, rsmCamera.view, glm::vec3(0.0f));
     glBindVertexArray(emptyVao_.id());
     renderFlux(rsm_, light, rsmCamera);
-    stats.rsmTexels += reflectingTexels(rsm_);
+    const std::vector<float> flux = rsm_.read(GBuffer::kRadiance);
+    stats.rsmTexels += reflectingTexels(flux);
+    float radius = 0.0f;
+    if (caches) {
+      radius = nearRadius(flux);
+      near_.add(rsm_.read(GBuffer::kPosition), rsm_.read(GBuffer::kNormal), flux, radius);
+    }
     stats.rsmMs += msSince(start);
     start = Clock::now();
-    stats.passes += caches ? caches_->gather(rsm_) : gather(camera, rsm_);
+    stats.passes += caches ? caches_->gather(rsm_, radius) : gather(camera, rsm_);
     glFinish();
     stats.gatherMs += msSince(start);
     ++stats.rsmLights;
   }
   if (caches) {
+    start = Clock::now();
+    near_.upload(caches_->grid());
+    stats.nearPasses = near_.draw(camera);
+    glFinish();
+    stats.nearMs = msSince(start);
     start = Clock::now();
     caches_->interpolate(camera);
     glFinish();

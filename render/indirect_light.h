@@ -12,6 +12,7 @@
 #include "render/geometry_pass.h"
 #include "render/gpu_scene.h"
 #include "render/light_caches.h"
+#include "render/near_field.h"
 #include "scene/scene.h"
 
 namespace manylight {
@@ -49,6 +50,8 @@ struct IndirectStats {
   int cascades = 0;
   float cacheCell = 0.0f;      // the smallest cascade's cell edge
   double allocateMs = 0.0;     // allocated on the CPU and uploaded
+  int nearPasses = 0;          // near-field passes (render/near_field.h)
+  double nearMs = 0.0;         // the near field binned, uploaded and gathered per pixel
   double interpolateMs = 0.0;  // the per-pixel interpolation pass
 };
 
@@ -69,10 +72,10 @@ class IndirectLight {
                       const IndirectSettings& settings);
 
  private:
-  GBuffer rsm_;  // one map at a time: its radiance target holds the flux
-  gl::VertexArray emptyVao_;
-  std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches  // the full-screen
-                                         // triangle needs a bound VAO in core profile
+  GBuffer rsm_;               // one map at a time: its radiance target holds the flux
+  gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
+  std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches
+  NearField near_;
 };
 
 }  // namespace manylight

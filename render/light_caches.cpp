@@ -37,6 +37,13 @@ int cascadesToCover(glm::vec3 centre, float cell, const Bounds& bounds, int reso
   return cascades;
 }
 
+void setCascadeUniforms(const gl::Program& p, const CacheGrid& grid) {
+  glUniform1i(p.uniform("uCascades"), grid.cascades);
+  glUniform3fv(p.uniform("uCentre"), 1, glm::value_ptr(grid.centre));
+  glUniform1fv(p.uniform("uCell"), grid.cascades, grid.cell.data());
+  glUniform1fv(p.uniform("uDecision"), grid.cascades, grid.decision.data());
+}
+
 int cascadeOf(const CacheGrid& grid, glm::vec3 p, float* band) {
   const glm::vec3 d3 = glm::abs(p - grid.centre);
   const float d = std::max({d3.x, d3.y, d3.z});
@@ -156,7 +163,7 @@ void LightCaches::upload(const CacheGrid& grid, const CacheAllocation& a, bool s
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-int LightCaches::gather(const GBuffer& rsm) {
+int LightCaches::gather(const GBuffer& rsm, float nearRadius) {
   if (count_ == 0) return 0;
   const gl::Program& p =
       gl::cachedProgram("fullscreen.vert", "cache_gather.frag", basisDefines(shL2_), kShOutputs);
@@ -169,6 +176,7 @@ int LightCaches::gather(const GBuffer& rsm) {
   glBlendFunc(GL_ONE, GL_ONE);
   bind(p, "uCachePosition", GL_TEXTURE_2D, positions_.id(), 0);
   glUniform1i(p.uniform("uCacheCount"), count_);
+  glUniform1f(p.uniform("uNearRadius"), nearRadius);
   const int passes = drawRsmRowPasses(p, rsm, 1);
   glDisable(GL_BLEND);
   return passes;
@@ -193,13 +201,9 @@ void LightCaches::interpolate(const GBuffer& camera) {
     const GLuint id = sh_[std::size_t(std::min<std::size_t>(std::size_t(i), sh_.size() - 1))].id();
     bind(p, kShNames[i], GL_TEXTURE_2D, id, 4 + i);
   }
-  glUniform1i(p.uniform("uCascades"), grid_.cascades);
+  setCascadeUniforms(p, grid_);
   glUniform1i(p.uniform("uResolution"), grid_.resolution);
-  glUniform1f(p.uniform("uBandCells"), kBandCells);
-  glUniform3fv(p.uniform("uCentre"), 1, glm::value_ptr(grid_.centre));
   glUniform3fv(p.uniform("uOrigin"), grid_.cascades, glm::value_ptr(grid_.origin[0]));
-  glUniform1fv(p.uniform("uCell"), grid_.cascades, grid_.cell.data());
-  glUniform1fv(p.uniform("uDecision"), grid_.cascades, grid_.decision.data());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_BLEND);
   glActiveTexture(GL_TEXTURE0);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "gl/objects.h"
+#include "render/cache_layout.h"
 #include "render/gbuffer.h"
 #include "scene/scene.h"
 
@@ -36,9 +37,6 @@ struct CacheGrid {
   int nodesPerAxis() const { return resolution + 1; }
 };
 inline constexpr int kMaxCascades = 8;
-// Cells (of the smaller cascade) across a transition band: two, not the document's one, so
-// a camera moving a given distance a frame moves the blend half as far.
-inline constexpr float kBandCells = 2.0f;
 
 // Cascades of cell edge `cell` (at the smallest) around `centre`.
 CacheGrid cacheGrid(glm::vec3 centre, float cell, int cascades = 4, int resolution = 64);
@@ -49,6 +47,9 @@ int cascadesToCover(glm::vec3 centre, float cell, const Bounds& bounds, int reso
 // The cascade that holds `p` (cascades when none does), and where p lies in its transition
 // band: 0 outside it, rising to 1 at the decision boundary.
 int cascadeOf(const CacheGrid& grid, glm::vec3 p, float* band = nullptr);
+
+// Sets glsl/cache_cascade.glsl's uniforms of `p`, in use.
+void setCascadeUniforms(const gl::Program& p, const CacheGrid& grid);
 
 struct CacheAllocation {
   // Per cascade, (resolution + 1)³ nodes, x fastest then y then z: a cache index, or −1.
@@ -69,8 +70,10 @@ class LightCaches {
   // gl::GlError.
   void upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2);
   int count() const { return count_; }
-  // Adds one map's light to every cache (glsl/cache_gather.frag); returns the passes.
-  int gather(const GBuffer& rsm);
+  const CacheGrid& grid() const { return grid_; }
+  // Adds one map's far light to every cache (glsl/cache_gather.frag), for texels of near
+  // radius `nearRadius` (render/near_field.h); returns the passes.
+  int gather(const GBuffer& rsm, float nearRadius);
   // Adds every pixel's interpolated indirect light to `camera`'s radiance target.
   void interpolate(const GBuffer& camera);
 
