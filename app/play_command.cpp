@@ -146,9 +146,12 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   std::signal(SIGPIPE, SIG_IGN);  // a closed pipe shows as a failed write, and stops the playback
   Progress progress(a.frames > 0 ? a.frames : 0);
   const auto playStart = Clock::now();
+  nlohmann::json indirectFrames = nlohmann::json::array();
   const PlaybackOutcome out = play(
       baked.scene, request,
-      [&](int frame, const Image& image, const FrameStats&) {
+      [&](int frame, const Image& image, const FrameStats& frameStats) {
+        if (r.indirect.mode != Indirect::None)
+          indirectFrames.push_back(indirectStats(r.indirect, frameStats.indirect));
         if (!sink.write(frame, image)) return false;
         progress.step("frame " + std::to_string(frame));
         return true;
@@ -183,6 +186,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
         {"output_closed", sink.closed()},
         {"total_ms", msSince(processStart)}};
     if (out.lightsAnimated) stats["frame_move_lights_ms"] = out.moveMs;
+    if (!indirectFrames.empty()) stats["frame_indirect"] = indirectFrames;
     if (!out.methodReason.empty()) stats["method_reason"] = out.methodReason;
     if (out.method == Method::Lightcuts || out.method == Method::LightcutsDistance) {
       stats["frame_cut_ms"] = out.cutMs;

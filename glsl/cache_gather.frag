@@ -1,13 +1,14 @@
-// `--indirect caches` (render/light_caches.h): per cache (one fragment of the cache target,
-// cache c at texel (c mod width, c / width)), the light of one reflective shadow map's texels
-// arriving at the cache's position, projected on glsl/sh_basis.glsl, added (blend ONE, ONE) to
-// the coefficient targets. A texel of flux Φ and area A at y, normal n_t, sends towards the
+// `--indirect caches` (render/light_caches.h): per cache from uFirstCache on (one fragment of
+// the cache target, cache c at texel (c mod width, c / width)), the light of one reflective
+// shadow map's texels arriving at the cache's position, projected on glsl/sh_basis.glsl, added
+// (blend ONE, ONE) to the coefficient targets. A texel of flux Φ and area A at y, normal n_t, sends towards the
 // cache at q, along ω = (y − q)/d,
 //   Φ · max(n_t·(−ω), 0) / (π · (d² + A/π))  per unit max(n·ω, 0),
 // so a pixel's irradiance E(n) = Σ that · max(n·ω, 0), as glsl/indirect_exact.frag sums it;
 // times farWeight(d, r), r the larger of the map's uNearRadius and kNearCells of the cache's
 // cells: the pixels gather the rest themselves (render/near_field.h).
 uniform sampler2D uCachePosition;
+uniform int uFirstCache;  // the caches before it kept their light from the frame before
 uniform int uCacheCount;
 uniform sampler2D uRsmPosition;
 uniform sampler2D uRsmNormal;
@@ -28,7 +29,8 @@ out vec4 oSh6;
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   int width = textureSize(uCachePosition, 0).x;
-  if (px.y * width + px.x >= uCacheCount) discard;
+  int cache = px.y * width + px.x;
+  if (cache < uFirstCache || cache >= uCacheCount) discard;
   vec4 node = texelFetch(uCachePosition, px, 0);  // position, cell edge
   vec3 q = node.xyz;
   float r = max(uNearRadius, kNearCells * node.w);

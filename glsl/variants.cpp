@@ -91,6 +91,7 @@ std::vector<ProgramVariants> programs() {
   out.push_back({"fullscreen.vert", "indirect_exact.frag", {"oRadiance"}, {{}}});
   const std::vector<std::string> sh = {"oSh0", "oSh1", "oSh2", "oSh3", "oSh4", "oSh5", "oSh6"};
   out.push_back({"fullscreen.vert", "cache_gather.frag", sh, {{}, {"SH_L2"}}});
+  out.push_back({"fullscreen.vert", "cache_copy.frag", sh, {{}, {"SH_L2"}}});
   out.push_back({"fullscreen.vert", "cache_interpolate.frag", {"oRadiance"}, {{}, {"SH_L2"}}});
   out.push_back({"fullscreen.vert", "cache_near.frag", {"oRadiance"}, {{}}});
   return out;

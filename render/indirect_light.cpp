@@ -6,6 +6,7 @@
 #include "bake/light_pack.h"
 #include "base/error.h"
 #include "gl/context.h"
+#include "render/lighting_inputs.h"
 #include "render/rsm.h"
 
 namespace manylight {
@@ -21,9 +22,7 @@ double msSince(Clock::time_point t) {
 }
 
 void bindTarget(const gl::Program& p, const char* name, const gl::Texture& t, int unit) {
-  glActiveTexture(GL_TEXTURE0 + unit);
-  glBindTexture(GL_TEXTURE_2D, t.id());
-  glUniform1i(p.uniform(name), unit);
+  bindSampler(p, name, GL_TEXTURE_2D, t.id(), unit);
 }
 
 // Writes the map's flux over its radiance target (glsl/rsm_flux.frag).
@@ -54,18 +53,16 @@ int gather(const GBuffer& camera, const GBuffer& rsm) {
   const gl::Program& p =
       gl::cachedProgram("fullscreen.vert", "indirect_exact.frag", {}, {"oRadiance"});
   p.use();
-  glBindFramebuffer(GL_FRAMEBUFFER, camera.lightingFramebuffer().id());
-  glViewport(0, 0, camera.width(), camera.height());
-  glDisable(GL_DEPTH_TEST);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  glBlendFunc(GL_ONE, GL_ONE);
-  bindTarget(p, "uPosition", camera.target(GBuffer::kPosition), 0);
-  bindTarget(p, "uNormal", camera.target(GBuffer::kNormal), 1);
-  bindTarget(p, "uAlbedo", camera.target(GBuffer::kAlbedo), 2);
+  bindIndirectInputs(p, camera);
   const int passes = drawRsmRowPasses(p, rsm, 3);
   glDisable(GL_BLEND);
   return passes;
+}
+
+bool sameLight(const Light& a, const Light& b) {
+  return a.type == b.type && a.position == b.position && a.direction == b.direction &&
+         a.colour == b.colour && a.intensity == b.intensity && a.range == b.range &&
+         a.innerConeAngle == b.innerConeAngle && a.outerConeAngle == b.outerConeAngle;
 }
 
 // Map texels that reflect flux (flux.w, the patch area, is non-zero).
@@ -95,7 +92,37 @@ CacheGrid frameCacheGrid(const IndirectSettings& settings, const Bounds& bounds,
   return cacheGrid(eye, cell, cascadesToCover(eye, cell, bounds));
 }
 
-IndirectLight::IndirectLight(int rsmSize) : rsm_(rsmSize, rsmSize) {}
+IndirectLight::IndirectLight(int rsmSize) : rsmSize_(rsmSize) {}
+
+bool IndirectLight::sameMaps(const std::vector<Light>& lights, const RsmChoice& choice) const {
+  if (!mapsMade_ || choice.lights != mapLights_) return false;
+  for (std::size_t i = 0; i < maps_.size(); ++i)
+    if (!sameLight(maps_[i].light, lights[std::size_t(mapLights_[i])])) return false;
+  return true;
+}
+
+void IndirectLight::renderMaps(const Scene& scene, const GpuScene& gpu,
+                               const GeometryPass& geometry, const std::vector<Light>& lights,
+                               const RsmChoice& choice) {
+  const Bounds bounds = scene.bounds();
+  maps_.resize(choice.lights.size());
+  mapLights_ = choice.lights;
+  mapsMade_ = true;
+  near_.clear();
+  for (std::size_t i = 0; i < maps_.size(); ++i) {
+    Map& m = maps_[i];
+    m.light = lights[std::size_t(choice.lights[i])];
+    if (!m.rsm) m.rsm = std::make_unique<GBuffer>(rsmSize_, rsmSize_);
+    const RsmView rsmCamera = rsmView(m.light, bounds, rsmSize_);
+    geometry.draw(scene, gpu, *m.rsm, rsmCamera.view, glm::vec3(0.0f));
+    glBindVertexArray(emptyVao_.id());
+    renderFlux(*m.rsm, m.light, rsmCamera);
+    const std::vector<float> flux = m.rsm->read(GBuffer::kRadiance);
+    m.texels = reflectingTexels(flux);
+    m.nearRadius = nearRadius(flux);
+    near_.add(m.rsm->read(GBuffer::kPosition), m.rsm->read(GBuffer::kNormal), flux, m.nearRadius);
+  }
+}
 
 IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
                                    const GeometryPass& geometry, const GBuffer& camera,
@@ -110,40 +137,31 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   stats.candidates = choice.candidates;
   stats.fluxShare = choice.fluxShare;
   stats.chooseMs = msSince(start);
-  const Bounds bounds = scene.bounds();
+  start = Clock::now();
+  stats.mapsKept = sameMaps(lights, choice);
+  if (!stats.mapsKept) renderMaps(scene, gpu, geometry, lights, choice);
+  glFinish();
+  stats.rsmMs = msSince(start);
+  stats.rsmLights = int(maps_.size());
+  for (const Map& m : maps_) stats.rsmTexels += m.texels;
   const bool caches = settings.mode == Indirect::Caches;
   if (caches) {
     start = Clock::now();
-    const CacheGrid grid = frameCacheGrid(settings, bounds, view.eye);
+    const CacheGrid grid = frameCacheGrid(settings, scene.bounds(), view.eye);
     if (!caches_) caches_ = std::make_unique<LightCaches>();
-    caches_->upload(grid, allocateCaches(grid, position, normal), settings.shL2);
+    caches_->upload(grid, allocateCaches(grid, position, normal), settings.shL2, stats.mapsKept);
     stats.caches = caches_->count();
+    stats.cachesKept = caches_->kept();
     stats.cascades = grid.cascades;
     stats.cacheCell = grid.cell[0];
     stats.allocateMs = msSince(start);
   }
-  near_.clear();
-  for (int index : choice.lights) {
-    const Light& light = lights[std::size_t(index)];
-    start = Clock::now();
-    const RsmView rsmCamera = rsmView(light, bounds, rsm_.width());
-    geometry.draw(scene, gpu, rsm_, rsmCamera.view, glm::vec3(0.0f));
-    glBindVertexArray(emptyVao_.id());
-    renderFlux(rsm_, light, rsmCamera);
-    const std::vector<float> flux = rsm_.read(GBuffer::kRadiance);
-    stats.rsmTexels += reflectingTexels(flux);
-    float radius = 0.0f;
-    if (caches) {
-      radius = nearRadius(flux);
-      near_.add(rsm_.read(GBuffer::kPosition), rsm_.read(GBuffer::kNormal), flux, radius);
-    }
-    stats.rsmMs += msSince(start);
-    start = Clock::now();
-    stats.passes += caches ? caches_->gather(rsm_, radius) : gather(camera, rsm_);
-    glFinish();
-    stats.gatherMs += msSince(start);
-    ++stats.rsmLights;
-  }
+  start = Clock::now();
+  glBindVertexArray(emptyVao_.id());
+  for (const Map& m : maps_)
+    stats.passes += caches ? caches_->gather(*m.rsm, m.nearRadius) : gather(camera, *m.rsm);
+  glFinish();
+  stats.gatherMs = msSince(start);
   if (caches) {
     start = Clock::now();
     near_.upload(caches_->grid());

@@ -13,6 +13,7 @@
 #include "render/gpu_scene.h"
 #include "render/light_caches.h"
 #include "render/near_field.h"
+#include "render/rsm.h"
 #include "scene/scene.h"
 
 namespace manylight {
@@ -37,7 +38,8 @@ inline constexpr float kCacheCellsPerScene = 128.0f;
 
 // A frame's indirect light (`--stats`).
 struct IndirectStats {
-  int rsmLights = 0;        // maps rendered
+  int rsmLights = 0;        // maps used
+  bool mapsKept = false;    // the maps were the last frame's (IndirectLight::light)
   int candidates = 0;       // spot and directional lights
   long long rsmTexels = 0;  // map texels that reflect flux, over all maps
   double fluxShare = 1.0;   // RsmChoice::fluxShare
@@ -46,7 +48,8 @@ struct IndirectStats {
   double rsmMs = 0.0;       // rendering the maps and their flux
   double gatherMs = 0.0;    // the gather passes (exact), or the caches' (caches)
   // --indirect caches:
-  int caches = 0;  // allocated this frame
+  int caches = 0;      // allocated this frame
+  int cachesKept = 0;  // of them, those that kept the last frame's light (LightCaches::upload)
   int cascades = 0;
   float cacheCell = 0.0f;      // the smallest cascade's cell edge
   double allocateMs = 0.0;     // allocated on the CPU and uploaded
@@ -63,16 +66,32 @@ class IndirectLight {
  public:
   // Needs a current context; throws gl::GlError.
   explicit IndirectLight(int rsmSize);
-  int rsmSize() const { return rsm_.width(); }
+  int rsmSize() const { return rsmSize_; }
 
   // Adds one bounce from the maps of the chosen `lights` (the renderer's, by scene index) to
-  // the radiance target of `camera`, whose G-buffer holds the frame. Throws gl::GlError.
+  // the radiance target of `camera`, whose G-buffer holds the frame. Where the frame chooses
+  // the same lights as the last, with the same values, and the settings match, the last
+  // frame's maps serve again and so do its caches at the nodes both frames have: the scene's
+  // geometry does not change under a renderer. Throws gl::GlError.
   IndirectStats light(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
                       const GBuffer& camera, const View& view, const std::vector<Light>& lights,
                       const IndirectSettings& settings);
 
  private:
-  GBuffer rsm_;               // one map at a time: its radiance target holds the flux
+  // A chosen light's map (its radiance target holds the flux) and what it gives the caches.
+  struct Map {
+    Light light;
+    std::unique_ptr<GBuffer> rsm;
+    float nearRadius = 0.0f;
+    long long texels = 0;  // that reflect flux
+  };
+  bool sameMaps(const std::vector<Light>& lights, const RsmChoice& choice) const;
+  void renderMaps(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
+                  const std::vector<Light>& lights, const RsmChoice& choice);
+  int rsmSize_;
+  std::vector<Map> maps_;       // the last frame's, in the order of its choice
+  std::vector<int> mapLights_;  // their scene indices
+  bool mapsMade_ = false;
   gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
   std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches
   NearField near_;

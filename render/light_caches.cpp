@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/type_ptr.hpp>
+#include <unordered_map>
 
 #include "gl/context.h"
+#include "render/lighting_inputs.h"
 #include "render/rsm.h"
 
 namespace manylight {
@@ -108,12 +111,6 @@ void allocate2d(const gl::Texture& t, int w, int h, const float* data) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
 
-void bind(const gl::Program& p, const char* name, GLenum target, GLuint id, int unit) {
-  glActiveTexture(GL_TEXTURE0 + unit);
-  glBindTexture(target, id);
-  glUniform1i(p.uniform(name), unit);
-}
-
 std::vector<std::string> basisDefines(bool shL2) {
   return shL2 ? std::vector<std::string>{"SH_L2"} : std::vector<std::string>{};
 }
@@ -124,60 +121,146 @@ const std::vector<std::string> kShOutputs = {"oSh0", "oSh1", "oSh2", "oSh3",
 
 }  // namespace
 
-void LightCaches::upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2) {
+namespace {
+
+struct NodeKeyHash {
+  std::size_t operator()(const std::array<std::int64_t, 4>& k) const {
+    std::size_t h = 0;
+    for (std::int64_t v : k) h = h * 0x9E3779B97F4A7C15ull + std::size_t(v);
+    return h;
+  }
+};
+
+// Node positions are whole multiples of their cell edge (cacheGrid snaps them), so rounding
+// undoes the float arithmetic that made them.
+std::array<std::int64_t, 4> nodeKey(glm::vec4 node) {
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &node.w, sizeof bits);
+  const double h = double(node.w);
+  return {std::int64_t(bits), std::llround(double(node.x) / h), std::llround(double(node.y) / h),
+          std::llround(double(node.z) / h)};
+}
+
+// Scissors the rows that hold caches `first` … `end` − 1.
+void scissorCaches(int width, int height, int first, int end) {
+  glEnable(GL_SCISSOR_TEST);
+  const int y0 = first / width, y1 = std::min(height, (end + width - 1) / width);
+  glScissor(0, y0, width, std::max(0, y1 - y0));
+}
+
+}  // namespace
+
+void LightCaches::allocateTargets(Targets& t, int height) {
+  const std::size_t targets = shL2_ ? 7 : 3;
+  if (t.height == height && t.sh.size() == targets) return;
+  t.sh.clear();
+  t.sh.resize(targets);
+  glBindFramebuffer(GL_FRAMEBUFFER, t.framebuffer.id());
+  std::vector<GLenum> buffers;
+  for (std::size_t i = 0; i < targets; ++i) {
+    allocate2d(t.sh[i], width_, height, nullptr);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + GLenum(i), GL_TEXTURE_2D,
+                           t.sh[i].id(), 0);
+    buffers.push_back(GL_COLOR_ATTACHMENT0 + GLenum(i));
+  }
+  glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+  t.height = height;
+}
+
+void LightCaches::upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2, bool keep) {
+  keep = keep && shL2 == shL2_ && count_ > 0;
   grid_ = grid;
   shL2_ = shL2;
-  count_ = int(a.positions.size());
+  const std::size_t count = a.positions.size();
+  // Per cache of `a`, its slot at the last upload (−1: none), and its slot now: kept first.
+  std::vector<int> before(count, -1), slot(count);
+  if (keep) {
+    std::unordered_map<NodeKey, int, NodeKeyHash> slots;
+    slots.reserve(keys_.size());
+    for (std::size_t i = 0; i < keys_.size(); ++i) slots.emplace(keys_[i], int(i));
+    for (std::size_t c = 0; c < count; ++c) {
+      const auto it = slots.find(nodeKey(a.positions[c]));
+      if (it != slots.end()) before[c] = it->second;
+    }
+  }
+  int next = 0;
+  for (std::size_t c = 0; c < count; ++c)
+    if (before[c] >= 0) slot[c] = next++;
+  kept_ = next;
+  for (std::size_t c = 0; c < count; ++c)
+    if (before[c] < 0) slot[c] = next++;
+  count_ = int(count);
+  std::vector<float> cav = a.cav;
+  for (float& v : cav)
+    if (v >= 0.0f) v = float(slot[std::size_t(v)]);
   const int n = grid.nodesPerAxis();
   glBindTexture(GL_TEXTURE_3D, cav_.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n, n, n * grid.cascades, 0, GL_RED, GL_FLOAT,
-               a.cav.data());
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n, n, n * grid.cascades, 0, GL_RED, GL_FLOAT, cav.data());
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glBindTexture(GL_TEXTURE_3D, 0);
-  const int width = kCacheTextureWidth, height = std::max(1, (count_ + width - 1) / width);
-  std::vector<float> texels(std::size_t(width) * std::size_t(height) * 4, 0.0f);
-  for (std::size_t c = 0; c < a.positions.size(); ++c)
-    std::copy_n(glm::value_ptr(a.positions[c]), 4, &texels[4 * c]);
-  allocate2d(positions_, width, height, texels.data());
-  const std::size_t targets = shL2 ? 7 : 3;
-  if (height != height_ || sh_.size() != targets) {
-    sh_.clear();
-    sh_.resize(targets);
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-    std::vector<GLenum> buffers;
-    for (std::size_t i = 0; i < targets; ++i) {
-      allocate2d(sh_[i], width, height, nullptr);
-      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + GLenum(i), GL_TEXTURE_2D,
-                             sh_[i].id(), 0);
-      buffers.push_back(GL_COLOR_ATTACHMENT0 + GLenum(i));
-    }
-    glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+  width_ = kCacheTextureWidth;
+  height_ = std::max(1, (count_ + width_ - 1) / width_);
+  std::vector<float> texels(std::size_t(width_) * std::size_t(height_) * 4, 0.0f),
+      previous(texels.size(), 0.0f);
+  keys_.assign(count, NodeKey{});
+  for (std::size_t c = 0; c < count; ++c) {
+    const std::size_t s = std::size_t(slot[c]);
+    std::copy_n(glm::value_ptr(a.positions[c]), 4, &texels[4 * s]);
+    previous[4 * s] = float(before[c]);
+    keys_[s] = nodeKey(a.positions[c]);
   }
-  width_ = width;
-  height_ = height;
+  allocate2d(positions_, width_, height_, texels.data());
+  allocate2d(previous_, width_, height_, previous.data());
+  if (kept_ > 0) current_ ^= 1;
+  Targets& now = targets_[current_];
+  allocateTargets(now, height_);
   glBindTexture(GL_TEXTURE_2D, 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glBindFramebuffer(GL_FRAMEBUFFER, now.framebuffer.id());
   const float zero[4] = {0, 0, 0, 0};
-  for (std::size_t i = 0; i < sh_.size(); ++i) glClearBufferfv(GL_COLOR, GLint(i), zero);
+  for (std::size_t i = 0; i < now.sh.size(); ++i) glClearBufferfv(GL_COLOR, GLint(i), zero);
+  if (kept_ > 0) copyKept(targets_[current_ ^ 1], now);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+void LightCaches::copyKept(const Targets& from, const Targets& to) {
+  const gl::Program& p =
+      gl::cachedProgram("fullscreen.vert", "cache_copy.frag", basisDefines(shL2_), kShOutputs);
+  p.use();
+  glBindFramebuffer(GL_FRAMEBUFFER, to.framebuffer.id());
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  bindSampler(p, "uPrevious", GL_TEXTURE_2D, previous_.id(), 0);
+  for (int i = 0; i < 7; ++i) {
+    const std::size_t t = std::min(std::size_t(i), from.sh.size() - 1);
+    bindSampler(p, kShNames[i], GL_TEXTURE_2D, from.sh[t].id(), 1 + i);
+  }
+  glUniform1i(p.uniform("uKept"), kept_);
+  scissorCaches(width_, height_, 0, kept_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_SCISSOR_TEST);
+  glActiveTexture(GL_TEXTURE0);
+}
+
 int LightCaches::gather(const GBuffer& rsm, float nearRadius) {
-  if (count_ == 0) return 0;
+  if (count_ == kept_) return 0;
   const gl::Program& p =
       gl::cachedProgram("fullscreen.vert", "cache_gather.frag", basisDefines(shL2_), kShOutputs);
   p.use();
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glBindFramebuffer(GL_FRAMEBUFFER, targets_[current_].framebuffer.id());
   glViewport(0, 0, width_, height_);
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
-  bind(p, "uCachePosition", GL_TEXTURE_2D, positions_.id(), 0);
+  bindSampler(p, "uCachePosition", GL_TEXTURE_2D, positions_.id(), 0);
+  glUniform1i(p.uniform("uFirstCache"), kept_);
   glUniform1i(p.uniform("uCacheCount"), count_);
   glUniform1f(p.uniform("uNearRadius"), nearRadius);
+  scissorCaches(width_, height_, kept_, count_);
   const int passes = drawRsmRowPasses(p, rsm, 1);
+  glDisable(GL_SCISSOR_TEST);
   glDisable(GL_BLEND);
   return passes;
 }
@@ -186,20 +269,13 @@ void LightCaches::interpolate(const GBuffer& camera) {
   const gl::Program& p = gl::cachedProgram("fullscreen.vert", "cache_interpolate.frag",
                                            basisDefines(shL2_), {"oRadiance"});
   p.use();
-  glBindFramebuffer(GL_FRAMEBUFFER, camera.lightingFramebuffer().id());
-  glViewport(0, 0, camera.width(), camera.height());
-  glDisable(GL_DEPTH_TEST);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  glBlendFunc(GL_ONE, GL_ONE);
-  bind(p, "uPosition", GL_TEXTURE_2D, camera.target(GBuffer::kPosition).id(), 0);
-  bind(p, "uNormal", GL_TEXTURE_2D, camera.target(GBuffer::kNormal).id(), 1);
-  bind(p, "uAlbedo", GL_TEXTURE_2D, camera.target(GBuffer::kAlbedo).id(), 2);
-  bind(p, "uCav", GL_TEXTURE_3D, cav_.id(), 3);
+  bindIndirectInputs(p, camera);
+  bindSampler(p, "uCav", GL_TEXTURE_3D, cav_.id(), 3);
+  const std::vector<gl::Texture>& sh = targets_[current_].sh;
   for (int i = 0; i < 7; ++i) {
     // SH L1 reads three targets; the others' samplers still need a unit of their own.
-    const GLuint id = sh_[std::size_t(std::min<std::size_t>(std::size_t(i), sh_.size() - 1))].id();
-    bind(p, kShNames[i], GL_TEXTURE_2D, id, 4 + i);
+    const GLuint id = sh[std::min(std::size_t(i), sh.size() - 1)].id();
+    bindSampler(p, kShNames[i], GL_TEXTURE_2D, id, 4 + i);
   }
   setCascadeUniforms(p, grid_);
   glUniform1i(p.uniform("uResolution"), grid_.resolution);

@@ -12,6 +12,8 @@
 // inside that boundary (kBandCells wide), those of the next cascade too. The CAV (4 × 65³ nodes, 4
 // bytes each) is uploaded as one 3D texture; cache positions and coefficients are texels of 2D
 // textures sized from the frame's cache count.
+#include <array>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -62,28 +64,45 @@ struct CacheAllocation {
 CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& position,
                                const std::vector<float>& normal);
 
-// The caches on the GPU: the CAV, the cache positions and their coefficients.
+// The caches on the GPU: the CAV, the cache positions and their coefficients. A cache's light
+// depends only on its node and the maps, so while the maps stay the same (a static scene,
+// kiosk playback) a cache at a node the frame before also had keeps its coefficients, and
+// only the frame's new caches gather.
 class LightCaches {
  public:
   LightCaches() = default;
-  // Uploads `a` and clears the coefficients: textures grow to hold its caches. Throws
-  // gl::GlError.
-  void upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2);
+  // Uploads `a`: textures grow to hold its caches. With `keep`, the caches at nodes the last
+  // upload also had keep their coefficients (the maps and the basis are the caller's to
+  // check); the others, or all without `keep`, start at 0. Throws gl::GlError.
+  void upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2, bool keep);
   int count() const { return count_; }
+  int kept() const { return kept_; }  // caches that kept their coefficients at the last upload
   const CacheGrid& grid() const { return grid_; }
-  // Adds one map's far light to every cache (glsl/cache_gather.frag), for texels of near
-  // radius `nearRadius` (render/near_field.h); returns the passes.
+  // Adds one map's far light to the caches the last upload did not keep
+  // (glsl/cache_gather.frag), for texels of near radius `nearRadius` (render/near_field.h);
+  // returns the passes.
   int gather(const GBuffer& rsm, float nearRadius);
   // Adds every pixel's interpolated indirect light to `camera`'s radiance target.
   void interpolate(const GBuffer& camera);
 
  private:
+  // A cache's node in world units of its cascade's cell: (cell edge, and the node's position
+  // over it), the same in every frame whose cascades have the same cells.
+  using NodeKey = std::array<std::int64_t, 4>;
+  struct Targets {
+    std::vector<gl::Texture> sh;  // 7 (SH L2) or 3 (SH L1) coefficient targets
+    gl::Framebuffer framebuffer;
+    int height = 0;
+  };
+  void allocateTargets(Targets& t, int height);
+  void copyKept(const Targets& from, const Targets& to);
   CacheGrid grid_;
   bool shL2_ = false;
-  int count_ = 0, width_ = 0, height_ = 0;
-  gl::Texture cav_, positions_;
-  std::vector<gl::Texture> sh_;  // 7 (SH L2) or 3 (SH L1) coefficient targets
-  gl::Framebuffer framebuffer_;
+  int count_ = 0, kept_ = 0, width_ = 0, height_ = 0;
+  std::vector<NodeKey> keys_;               // per cache, its node
+  gl::Texture cav_, positions_, previous_;  // previous_: per kept cache, its slot the frame before
+  Targets targets_[2];
+  int current_ = 0;  // targets_[current_] holds this frame's coefficients
 };
 
 }  // namespace manylight

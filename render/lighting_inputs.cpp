@@ -32,4 +32,23 @@ void bindLightingInputs(const gl::Program& program, const GBuffer& gbuffer, cons
   glUniform1i(program.uniform("uSpotStart"), scene.spotStart());
 }
 
+void bindSampler(const gl::Program& program, const char* name, unsigned target, unsigned id,
+                 int unit) {
+  glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+  glBindTexture(GLenum(target), GLuint(id));
+  glUniform1i(program.uniform(name), unit);
+}
+
+void bindIndirectInputs(const gl::Program& program, const GBuffer& camera) {
+  glBindFramebuffer(GL_FRAMEBUFFER, camera.lightingFramebuffer().id());
+  glViewport(0, 0, camera.width(), camera.height());
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  bindSampler(program, "uPosition", GL_TEXTURE_2D, camera.target(GBuffer::kPosition).id(), 0);
+  bindSampler(program, "uNormal", GL_TEXTURE_2D, camera.target(GBuffer::kNormal).id(), 1);
+  bindSampler(program, "uAlbedo", GL_TEXTURE_2D, camera.target(GBuffer::kAlbedo).id(), 2);
+}
+
 }  // namespace manylight

@@ -13,4 +13,14 @@ namespace manylight {
 void bindLightingInputs(const gl::Program& program, const GBuffer& gbuffer, const GpuScene& scene,
                         const View& view);
 
+// Binds texture `id` (of `target`, e.g. GL_TEXTURE_2D) to texture unit `unit` and points
+// `program`'s sampler `name` at it.
+void bindSampler(const gl::Program& program, const char* name, unsigned target, unsigned id,
+                 int unit);
+
+// What the indirect passes that add to the camera's pixels share: `camera`'s lighting
+// framebuffer and viewport, additive blending, no depth test, and its position, normal and
+// albedo targets on units 0–2 as uPosition, uNormal, uAlbedo of `program`, which must be in use.
+void bindIndirectInputs(const gl::Program& program, const GBuffer& camera);
+
 }  // namespace manylight

@@ -5,6 +5,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/context.h"
+#include "render/lighting_inputs.h"
 
 namespace manylight {
 
@@ -21,10 +22,14 @@ float nearRadius(const std::vector<float>& flux) {
   return kNearTexelEdges * *middle;
 }
 
-void NearField::clear() { texels_.clear(); }
+void NearField::clear() {
+  texels_.clear();
+  binned_.clear();
+}
 
 void NearField::add(const std::vector<float>& position, const std::vector<float>& normal,
                     const std::vector<float>& flux, float radius) {
+  binned_.clear();
   for (std::size_t i = 0; i + 3 < flux.size(); i += 4) {
     if (flux[i + 3] == 0.0f) continue;
     texels_.push_back({glm::vec4(position[i], position[i + 1], position[i + 2], radius),
@@ -79,16 +84,6 @@ std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Texel>& texels,
   }
   return planes;
 }
-
-namespace {
-
-void bind(const gl::Program& p, const char* name, GLenum target, GLuint id, int unit) {
-  glActiveTexture(GLenum(GL_TEXTURE0 + unit));
-  glBindTexture(target, id);
-  glUniform1i(p.uniform(name), unit);
-}
-
-}  // namespace
 
 // Appends to `lists` the indices of `texels` ordered by their cell in the grid of `cells`
 // cells of edge `cell` from `lo`; returns per cell its first entry in lists and its count.
@@ -145,7 +140,9 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
 void NearField::upload(const CacheGrid& grid) {
   cascades_ = grid;
   uploaded_ = int(texels_.size());
-  if (texels_.empty()) return;
+  // The bins depend on the texels and the cascades' cells only, not on where the camera is.
+  if (texels_.empty() || binned_ == grid.cell) return;
+  binned_ = grid.cell;
   glm::vec3 lo(texels_[0].positionRadius), hi = lo;
   float mapRadius = 0.0f;
   for (const Texel& t : texels_) {
@@ -195,20 +192,12 @@ int NearField::draw(const GBuffer& camera) {
   if (uploaded_ == 0) return 0;
   const gl::Program& p = gl::cachedProgram("fullscreen.vert", "cache_near.frag", {}, {"oRadiance"});
   p.use();
-  glBindFramebuffer(GL_FRAMEBUFFER, camera.lightingFramebuffer().id());
-  glViewport(0, 0, camera.width(), camera.height());
-  glDisable(GL_DEPTH_TEST);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  glBlendFunc(GL_ONE, GL_ONE);
-  bind(p, "uPosition", GL_TEXTURE_2D, camera.target(GBuffer::kPosition).id(), 0);
-  bind(p, "uNormal", GL_TEXTURE_2D, camera.target(GBuffer::kNormal).id(), 1);
-  bind(p, "uAlbedo", GL_TEXTURE_2D, camera.target(GBuffer::kAlbedo).id(), 2);
-  bind(p, "uTexelPosition", GL_TEXTURE_2D, positions_.id(), 3);
-  bind(p, "uTexelNormal", GL_TEXTURE_2D, normals_.id(), 4);
-  bind(p, "uTexelFlux", GL_TEXTURE_2D, fluxes_.id(), 5);
-  bind(p, "uGrid", GL_TEXTURE_3D, grid_.id(), 6);
-  bind(p, "uPlanes", GL_TEXTURE_3D, planes_.id(), 7);
+  bindIndirectInputs(p, camera);
+  bindSampler(p, "uTexelPosition", GL_TEXTURE_2D, positions_.id(), 3);
+  bindSampler(p, "uTexelNormal", GL_TEXTURE_2D, normals_.id(), 4);
+  bindSampler(p, "uTexelFlux", GL_TEXTURE_2D, fluxes_.id(), 5);
+  bindSampler(p, "uGrid", GL_TEXTURE_3D, grid_.id(), 6);
+  bindSampler(p, "uPlanes", GL_TEXTURE_3D, planes_.id(), 7);
   setCascadeUniforms(p, cascades_);
   const int k = cascades_.cascades;
   glUniform3fv(p.uniform("uGridOrigin"), 1, glm::value_ptr(origin_));

@@ -42,7 +42,8 @@ class NearField {
   void add(const std::vector<float>& position, const std::vector<float>& normal,
            const std::vector<float>& flux, float radius);
   long long texels() const { return (long long)texels_.size(); }
-  // Bins the texels in a grid per cascade of `grid` and uploads them. Throws gl::GlError.
+  // Bins the texels in a grid per cascade of `grid` and uploads them, unless they were binned
+  // for cascades of the same cells since the last clear. Throws gl::GlError.
   void upload(const CacheGrid& grid);
   // Adds every covered pixel's near light to `camera`'s radiance target; returns the passes.
   int draw(const GBuffer& camera);
@@ -52,7 +53,8 @@ class NearField {
     glm::vec4 positionRadius, normalArea, flux;  // radius: the map's nearRadius
   };
   std::vector<Texel> texels_;
-  int uploaded_ = 0;  // texels
+  int uploaded_ = 0;           // texels
+  std::vector<float> binned_;  // the cascades' cells of the bins uploaded; empty: none
   CacheGrid cascades_;
   glm::vec3 origin_{0.0f};
   std::vector<float> cell_;        // per cascade, the grid's cell edge

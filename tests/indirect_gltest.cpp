@@ -279,6 +279,57 @@ TEST(Indirect, CachesMatchExact) {
   EXPECT_LT(l2.mean, 0.5 * l1.mean);
 }
 
+// The largest channel difference between two frames over the larger of their peaks.
+double largestDifference(const Image& a, const Image& b) {
+  double diff = 0.0, peak = 0.0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+    if (i % 4 == 3) continue;
+    diff = std::max(diff, std::abs(double(a.rgba[i]) - double(b.rgba[i])));
+    peak = std::max({peak, double(a.rgba[i]), double(b.rgba[i])});
+  }
+  return diff / std::max(peak, 1e-30);
+}
+
+// A static scene: a frame from a camera moved a little keeps the frame before's maps and its
+// caches at the nodes both frames have, and comes out as a frame made afresh there; once the
+// light moves, neither is kept, and the frame again matches one made afresh.
+TEST(Indirect, KeptCachesMatchFreshOnes) {
+  RenderRequest request;
+  request.width = kWidth;
+  request.height = kHeight;
+  request.indirect.mode = Indirect::Caches;
+  PreparedRender p(cornell(), request);
+  View view = makeView(p.camera, kWidth, kHeight);
+  p.renderer->render(view, p.settings);
+  view.eye += glm::vec3(0.05f, 0.02f, 0.0f);
+  view.view = glm::lookAt(view.eye, view.eye + view.forward, glm::vec3(0, 1, 0));
+  FrameStats kept, fresh;
+  const Image moved = p.renderer->render(view, p.settings, &kept);
+  PreparedRender q(cornell(), request);
+  const Image afresh = q.renderer->render(view, q.settings, &fresh);
+  std::cout << kept.indirect.cachesKept << " of " << kept.indirect.caches
+            << " caches kept; largest difference " << largestDifference(moved, afresh) << "\n";
+  EXPECT_TRUE(kept.indirect.mapsKept);
+  EXPECT_FALSE(fresh.indirect.mapsKept);
+  EXPECT_EQ(fresh.indirect.cachesKept, 0);
+  EXPECT_EQ(kept.indirect.caches, fresh.indirect.caches);
+  EXPECT_GT(kept.indirect.cachesKept, kept.indirect.caches / 2);
+  EXPECT_LT(kept.indirect.cachesKept, kept.indirect.caches);
+  EXPECT_LE(largestDifference(moved, afresh), 1e-5);
+
+  Scene changed = cornell();
+  changed.lights[0].position.x += 0.1f;
+  p.renderer->moveLights(changed.lights, {0}, BakeOptions{});
+  FrameStats relit;
+  const Image lit = p.renderer->render(view, p.settings, &relit);
+  PreparedRender r(changed, request);
+  const Image litAfresh = r.renderer->render(view, r.settings);
+  EXPECT_FALSE(relit.indirect.mapsKept);
+  EXPECT_EQ(relit.indirect.cachesKept, 0);
+  EXPECT_LE(largestDifference(lit, litAfresh), 1e-5);
+  EXPECT_GT(largestDifference(lit, moved), 1e-3);
+}
+
 // An orthographic camera moved one pixel to the right per frame: each pixel sees the point
 // its right-hand neighbour saw the frame before. Caches sit at world-space nodes, so where
 // the point keeps its cascade it gets the same caches and the same value; in a transition
