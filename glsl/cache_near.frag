@@ -3,7 +3,7 @@
 // 1 − farWeight (the caches carry the rest), added (blend ONE, ONE) to the radiance target.
 // r is the larger of the texel's map radius and kNearCells cells of the pixel's cascade; in a
 // transition band the near light of both cascades is blended as the caches are. The texels
-// are found in the cascade's grid, the 27 cells around the pixel's, and of those only the
+// are found in the cascade's grid, the cells within 2r of the pixel, and of those only the
 // [uFirst, uFirst + uCount) th in the cells' order are read: one pass stays under
 // llvmpipe's 65,535 loop iterations.
 uniform sampler2D uPosition;
@@ -17,6 +17,7 @@ uniform sampler3D uGrid;           // per cascade's cell (stacked in z): its fir
 uniform sampler3D uPlanes;         // per cell: the plane its texels share (n, n·p), or 0
 uniform vec3 uGridOrigin;
 uniform float uGridCell[8];
+uniform float uGridReach[8];  // per cascade, twice the largest near radius: no texel reaches further
 uniform ivec3 uGridCells[8];
 uniform int uGridFirstZ[8];
 uniform int uFirst;
@@ -41,10 +42,11 @@ vec3 texelLight(int i, vec3 x, vec3 n, float cascadeRadius) {
 // Σ over the near texels of cascade k's grid: the irradiance times π.
 vec3 nearLight(int k, vec3 x, vec3 n) {
   float cascadeRadius = kNearCells * uCell[k];
-  ivec3 home = ivec3(floor((x - uGridOrigin) / uGridCell[k]));
-  ivec3 lo = max(home - 1, ivec3(0)), hi = min(home + 1, uGridCells[k] - 1);
+  ivec3 lo = max(ivec3(floor((x - uGridReach[k] - uGridOrigin) / uGridCell[k])), ivec3(0));
+  ivec3 hi = min(ivec3(floor((x + uGridReach[k] - uGridOrigin) / uGridCell[k])), uGridCells[k] - 1);
   int seen = 0;  // texels of the cells before this one
   float tolerance = kPlaneTolerance * uGridCell[k];
+  float reach = uGridReach[k];
   vec3 sum = vec3(0.0);
   for (int z = lo.z; z <= hi.z; ++z) {
     for (int y = lo.y; y <= hi.y; ++y) {
@@ -52,9 +54,19 @@ vec3 nearLight(int k, vec3 x, vec3 n) {
         ivec3 cell = ivec3(cx, y, z + uGridFirstZ[k]);
         vec2 range = texelFetch(uGrid, cell, 0).rg;
         int count = int(range.y);
-        vec4 plane = texelFetch(uPlanes, cell, 0);
-        // In the plane of all the cell's texels, x gets no light from them.
-        if (plane.xyz != vec3(0.0) && abs(dot(plane.xyz, x) - plane.w) <= tolerance) count = 0;
+        vec3 boxLo = uGridOrigin + vec3(cx, y, z) * uGridCell[k];
+        vec3 outside = max(max(boxLo - x, x - boxLo - uGridCell[k]), 0.0);
+        vec3 centre = boxLo + 0.5 * uGridCell[k] - x;
+        if (count == 0 || dot(outside, outside) >= reach * reach ||
+            dot(n, centre) + 0.5 * uGridCell[k] * dot(abs(n), vec3(1.0)) <= 0.0) {
+          // Empty, beyond every texel's reach, or wholly behind x's surface: no light from it.
+          count = 0;
+        } else {
+          // In or behind the plane of all the cell's texels, x gets no light from them: each
+          // sends its light to the side its normal faces.
+          vec4 plane = texelFetch(uPlanes, cell, 0);
+          if (plane.xyz != vec3(0.0) && dot(plane.xyz, x) - plane.w <= tolerance) count = 0;
+        }
         int first = max(uFirst - seen, 0), last = min(uFirst + uCount - seen, count);
         for (int j = first; j < last; ++j) {
           sum += texelLight(int(range.x) + j, x, n, cascadeRadius);

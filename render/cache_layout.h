@@ -11,8 +11,8 @@ inline constexpr float kBandCells = 2.0f;
 inline constexpr float kNearCells = 1.0f;
 
 // The near field's texels lie in one plane when within this × the near grid's cell of it; a
-// pixel as close to the plane skips them (NearField::cellPlanes), and the light it misses is
-// of this order relative to theirs.
+// pixel as close to the plane, or behind it, skips them (NearField::cellPlanes), and the light it
+// misses is of this order relative to theirs.
 inline constexpr float kPlaneTolerance = 1e-3f;
 
 }  // namespace manylight

@@ -61,8 +61,8 @@ void upload3d(const gl::Texture& t, glm::ivec3 size, const std::vector<glm::vec4
 }  // namespace
 
 // Per cell, the plane (unit normal, offset n·p) all its texels lie in within `tolerance`, or
-// 0 where they do not share one: a pixel in that plane gets no light from them, since each
-// sends none along its own surface, so it skips the cell.
+// 0 where they do not share one: a pixel in that plane or behind it gets no light from them,
+// since each sends its light only to the side it faces, so it skips the cell.
 std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Texel>& texels,
                                              const std::vector<float>& lists,
                                              const std::vector<glm::vec2>& ranges,
@@ -112,6 +112,28 @@ std::vector<glm::vec2> NearField::binTexels(const std::vector<Texel>& texels, gl
   return r;
 }
 
+// Bins `texels` (from `lo` to `hi`) as binTexels does in cells of edge `reach`, or of half
+// that where cells of `reach` would hold more than kNearTexelsPerCell texels on average.
+// Returns the ranges, and the cells' edge and count per axis.
+std::vector<glm::vec2> NearField::binCascade(const std::vector<Texel>& texels, glm::vec3 lo,
+                                             glm::vec3 hi, float reach, std::vector<float>& lists,
+                                             float& cell, glm::ivec3& cells) {
+  const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  const std::size_t listed = lists.size();
+  std::vector<glm::vec2> r;
+  for (float perReach : {1.0f, 2.0f}) {
+    lists.resize(listed);
+    cell = std::max({reach / perReach, extent / float(kNearGridCells - 1), 1e-6f});
+    cells = glm::clamp(glm::ivec3(glm::floor((hi - lo) / cell)) + 1, glm::ivec3(1),
+                       glm::ivec3(kNearGridCells));
+    r = binTexels(texels, lo, cell, cells, lists);
+    std::size_t occupied = 0;
+    for (const glm::vec2& range : r) occupied += range.y > 0.0f;
+    if (texels.size() <= kNearTexelsPerCell * occupied) break;
+  }
+  return r;
+}
+
 // Per cascade's cell, stacked in z in volumes of `size`: its first texel and their count
 // (grid_), and cellPlanes (planes_).
 void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
@@ -151,22 +173,22 @@ void NearField::upload(const CacheGrid& grid) {
     mapRadius = std::max(mapRadius, t.positionRadius.w);
   }
   origin_ = lo;
-  const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   std::vector<float> lists;                    // per cascade, the texel indices ordered by cell
   std::vector<std::vector<glm::vec2>> ranges;  // per cascade, per cell: first in lists, count
   std::vector<std::vector<glm::vec4>> planes;  // per cascade, per cell: cellPlanes
   cell_.clear();
+  reach_.clear();
   cells_.clear();
   firstZ_.clear();
   glm::ivec3 size(1, 1, 0);
   for (int k = 0; k < grid.cascades; ++k) {
     const float radius = std::max(mapRadius, kNearCells * grid.cell[std::size_t(k)]);
-    const float cell = std::max({2.0f * radius, extent / float(kNearGridCells - 1), 1e-6f});
-    const glm::ivec3 cells = glm::clamp(glm::ivec3(glm::floor((hi - lo) / cell)) + 1, glm::ivec3(1),
-                                        glm::ivec3(kNearGridCells));
-    std::vector<glm::vec2> r = binTexels(texels_, lo, cell, cells, lists);
+    float cell = 0.0f;
+    glm::ivec3 cells;
+    std::vector<glm::vec2> r = binCascade(texels_, lo, hi, 2.0f * radius, lists, cell, cells);
     planes.push_back(cellPlanes(texels_, lists, r, kPlaneTolerance * cell));
     cell_.push_back(cell);
+    reach_.push_back(2.0f * radius);
     cells_.push_back(cells);
     firstZ_.push_back(size.z);
     size = glm::ivec3(std::max(size.x, cells.x), std::max(size.y, cells.y), size.z + cells.z);
@@ -202,6 +224,7 @@ int NearField::draw(const GBuffer& camera) {
   const int k = cascades_.cascades;
   glUniform3fv(p.uniform("uGridOrigin"), 1, glm::value_ptr(origin_));
   glUniform1fv(p.uniform("uGridCell"), k, cell_.data());
+  glUniform1fv(p.uniform("uGridReach"), k, reach_.data());
   glUniform3iv(p.uniform("uGridCells"), k, glm::value_ptr(cells_[0]));
   glUniform1iv(p.uniform("uGridFirstZ"), k, firstZ_.data());
   int passes = 0;

@@ -10,8 +10,10 @@
 // r is the larger of the map's radius (nearRadius) and kNearCells cells of the cascade: the
 // far part is smooth on the scale of r, so trilinear interpolation between that cascade's
 // caches holds it, and a pixel gets the same r as the caches it interpolates. The pixels find
-// their near texels through a world-space grid per cascade, of cells 2 · r (the largest r),
-// built on the CPU from the maps read back: each pixel reads the 27 cells around its own.
+// their near texels through a world-space grid per cascade, of cells 2 · r (the largest r) or
+// r (kNearTexelsPerCell), built on the CPU from the maps read back: each pixel reads the cells
+// within 2 · r of it, and leaves out those wholly behind its surface, those whose texels all
+// lie in one plane that it is in or behind, and those beyond that reach.
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -28,6 +30,11 @@ float nearRadius(const std::vector<float>& flux);
 inline constexpr float kNearTexelEdges = 1.5f;
 // Grid cells a side at most; where the texels' bounds would need more, the cells grow.
 inline constexpr int kNearGridCells = 64;
+// A cascade's grid cells are as wide as its texels' reach (twice the largest near radius), so
+// a pixel reads at most 3 a side; where they would hold more texels than this on average
+// (denser maps, or several over the same surfaces), they are half as wide, at most 5 a side:
+// more cells to read, of which the distance and facing tests leave out more texels.
+inline constexpr std::size_t kNearTexelsPerCell = 16;
 // Near texels one pass reads at most per pixel and cascade: two cascades' worth stays under
 // llvmpipe's 65,535 loop iterations per invocation.
 inline constexpr int kNearTexelsPerPass = 30000;
@@ -58,10 +65,14 @@ class NearField {
   CacheGrid cascades_;
   glm::vec3 origin_{0.0f};
   std::vector<float> cell_;        // per cascade, the grid's cell edge
+  std::vector<float> reach_;       // per cascade, twice the largest near radius
   std::vector<glm::ivec3> cells_;  // per cascade, its cells per axis
   std::vector<int> firstZ_;        // per cascade, its first slice in grid_
   // Per cascade, every texel, ordered by the cascade's grid cell; per cell, its range and plane.
   gl::Texture positions_, normals_, fluxes_, grid_, planes_;
+  static std::vector<glm::vec2> binCascade(const std::vector<Texel>& texels, glm::vec3 lo,
+                                           glm::vec3 hi, float reach, std::vector<float>& lists,
+                                           float& cell, glm::ivec3& cells);
   static std::vector<glm::vec2> binTexels(const std::vector<Texel>& texels, glm::vec3 lo,
                                           float cell, glm::ivec3 cells, std::vector<float>& lists);
   void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
