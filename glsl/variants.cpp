@@ -89,6 +89,7 @@ std::vector<ProgramVariants> programs() {
                  {octreeDefines(0), octreeDefines(kOctreeHasSpecular)}});
   out.push_back({"fullscreen.vert", "rsm_flux.frag", {"oRadiance"}, {{}}});
   out.push_back({"fullscreen.vert", "indirect_exact.frag", {"oRadiance"}, {{}}});
+  out.push_back({"fullscreen.vert", "rsm_choice.frag", {"oFlux"}, {{}}});
   const std::vector<std::string> sh = {"oSh0", "oSh1", "oSh2", "oSh3", "oSh4", "oSh5", "oSh6"};
   out.push_back({"fullscreen.vert", "cache_gather.frag", sh, {{}, {"SH_L2"}}});
   out.push_back({"fullscreen.vert", "cache_copy.frag", sh, {{}, {"SH_L2"}}});
@@ -103,6 +104,7 @@ std::string layoutPrelude() {
   out += constLine("float", "kBandCells", floatLiteral(kBandCells));
   out += constLine("float", "kNearCells", floatLiteral(kNearCells));
   out += constLine("float", "kPlaneTolerance", floatLiteral(kPlaneTolerance));
+  out += constLine("int", "kRsmChoiceWidth", std::to_string(kRsmChoiceWidth));
   out += constLine("float", "kMinDistanceSquared", floatLiteral(shading::kMinDistanceSquared));
   out += constLine("float", "kDielectricF0", floatLiteral(shading::kDielectricF0));
   out += constLine("float", "kMaxPhongExponent", floatLiteral(shading::kMaxPhongExponent));

@@ -1,5 +1,5 @@
 #pragma once
-// Constants of `--indirect caches` that C++ and GLSL share (glsl/variants.cpp writes them
+// Constants of `--indirect` that C++ and GLSL share (glsl/variants.cpp writes them
 // into every shader's prelude). No GL.
 namespace manylight {
 
@@ -14,5 +14,8 @@ inline constexpr float kNearCells = 1.0f;
 // pixel as close to the plane, or behind it, skips them (NearField::cellPlanes), and the light it
 // misses is of this order relative to theirs.
 inline constexpr float kPlaneTolerance = 1e-3f;
+
+// The lights' flux target of the map choice (render/rsm_choice.h) is this many texels wide.
+inline constexpr int kRsmChoiceWidth = 1024;
 
 }  // namespace manylight

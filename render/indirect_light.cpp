@@ -130,10 +130,14 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
                                    const IndirectSettings& settings) {
   IndirectStats stats;
   if (settings.mode == Indirect::None) return stats;
+  glFinish();  // the direct light's passes are not the choice's time
   auto start = Clock::now();
   const std::vector<float> position = camera.read(GBuffer::kPosition);
   const std::vector<float> normal = camera.read(GBuffer::kNormal);
-  const RsmChoice choice = chooseRsmLights(lights, position, normal, settings.rsmLights);
+  glBindVertexArray(emptyVao_.id());
+  const RsmSamples samples = sampleRsmChoice(position, normal, lights.size());
+  const RsmChoice choice =
+      chooseRsmLights(lights, flux_.measure(gpu, lights, samples), settings.rsmLights, mapLights_);
   stats.candidates = choice.candidates;
   stats.fluxShare = choice.fluxShare;
   stats.chooseMs = msSince(start);

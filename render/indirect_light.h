@@ -14,6 +14,7 @@
 #include "render/light_caches.h"
 #include "render/near_field.h"
 #include "render/rsm.h"
+#include "render/rsm_choice.h"
 #include "scene/scene.h"
 
 namespace manylight {
@@ -44,7 +45,7 @@ struct IndirectStats {
   long long rsmTexels = 0;  // map texels that reflect flux, over all maps
   double fluxShare = 1.0;   // RsmChoice::fluxShare
   int passes = 0;           // gather passes
-  double chooseMs = 0.0;    // reading the G-buffer back and choosing the lights (CPU)
+  double chooseMs = 0.0;    // reading the G-buffer back and choosing the lights
   double rsmMs = 0.0;       // rendering the maps and their flux
   double gatherMs = 0.0;    // the gather passes (exact), or the caches' (caches)
   // --indirect caches:
@@ -95,6 +96,7 @@ class IndirectLight {
   gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
   std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches
   NearField near_;
+  LightFlux flux_;
 };
 
 }  // namespace manylight

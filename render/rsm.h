@@ -12,29 +12,6 @@
 
 namespace manylight {
 
-// The lights given maps for one frame and what they cover.
-struct RsmChoice {
-  std::vector<int> lights;  // scene indices, the most flux first
-  int candidates = 0;       // spot and directional lights
-  // The chosen lights' share of the direct flux the view receives: of Σ over the sampled
-  // pixels of every light's irradiance there (luminance), the part the chosen ones give.
-  // 1 where no light reaches the view.
-  double fluxShare = 1.0;
-};
-
-// Pixels chooseRsmLights samples at most, on a regular grid over the image: 256, or fewer
-// (down to 32) where lights × samples would pass kRsmChoiceEvaluations.
-inline constexpr int kRsmChoiceSamples = 256;
-inline constexpr int kRsmChoiceMinSamples = 32;
-inline constexpr double kRsmChoiceEvaluations = 1 << 22;
-
-// The `count` spot and directional lights that send the most flux into the view: the
-// largest Σ of irradiance (luminance) over the sampled covered pixels of the
-// frame's G-buffer, read back as RGBA floats (`position`, `normal`; normal.w 0 off the
-// geometry). Ties go to the lower index. Runs on every core.
-RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<float>& position,
-                          const std::vector<float>& normal, int count);
-
 // A map's camera and the scale of its texels' areas (glsl/rsm_flux.frag's uTexelScale).
 struct RsmView {
   View view;

@@ -13,8 +13,10 @@
 #include <iostream>
 
 #include "generators/scene_builder.h"
+#include "render/gpu_scene.h"
 #include "render/light_caches.h"
 #include "render/render_job.h"
+#include "render/rsm_choice.h"
 #include "scene/gltf_loader.h"
 #include "scene/shading_model.h"
 #include "tests/gl_support.h"
@@ -228,6 +230,64 @@ TEST(Indirect, MapsGoToTheLightsWithTheMostFlux) {
   const Frame one = render(cornell(), Indirect::Exact, 64);
   EXPECT_EQ(one.stats.indirect.rsmLights, 1);
   EXPECT_DOUBLE_EQ(one.stats.indirect.fluxShare, 1.0);
+}
+
+// The map choice weighs every light at every sample on the GPU, in float: against a CPU
+// double-precision sum of the shading model's irradiance, each light's flux is within 10⁻⁴
+// of the largest, and the same lights are chosen.
+TEST(Indirect, TheChoiceWeighsTheLightsAsTheShadingModelDoes) {
+  context();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "manylight_indirect_flux.glb").string();
+  CornellOptions options;
+  options.extraLights = 4095;
+  writeCornellScene(path, options);
+  const Scene scene = loadGltf(path);
+  std::filesystem::remove(path);
+  const Frame f = render(scene, Indirect::None, 64);
+  const RsmSamples samples = sampleRsmChoice(f.position, f.normal, scene.lights.size());
+  ASSERT_GT(samples.position.size(), 200u);
+  std::vector<double> oracle(scene.lights.size(), 0.0);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    for (std::size_t s = 0; s < samples.position.size(); ++s) {
+      glm::dvec3 l;
+      const glm::dvec3 e = shading::irradiance(scene.lights[i], glm::dvec3(samples.position[s]),
+                                               glm::dvec3(samples.normal[s]), l);
+      oracle[i] += 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
+    }
+    largest = std::max(largest, oracle[i]);
+  }
+  const GpuScene gpu(scene, scene.lights);
+  const gl::VertexArray vao;
+  gl::api::glBindVertexArray(vao.id());
+  LightFlux flux;
+  const std::vector<double> measured = flux.measure(gpu, scene.lights, samples);
+  gl::api::glBindVertexArray(0);
+  ASSERT_EQ(measured.size(), oracle.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < oracle.size(); ++i)
+    worst = std::max(worst, std::abs(measured[i] - oracle[i]) / largest);
+  std::cout << "largest flux " << largest << "; worst light off by " << worst << " of it\n";
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LE(worst, 1e-4);
+  EXPECT_EQ(chooseRsmLights(scene.lights, measured, 4).lights,
+            chooseRsmLights(scene.lights, oracle, 4).lights);
+}
+
+// The frame before's lights keep their maps, in their order, while their flux is at least
+// kRsmChoiceKeep × the weakest of the largest; a point light never gets one.
+TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
+  std::vector<Light> lights(6);
+  for (Light& l : lights) l.type = LightType::Spot;
+  lights[5].type = LightType::Point;
+  const std::vector<double> flux = {10.0, 8.0, 3.0, 5.0, 2.0, 50.0};
+  EXPECT_EQ(chooseRsmLights(lights, flux, 2).lights, (std::vector<int>{0, 1}));
+  // 5 ≥ 0.5 × 8 stays, first; 2 < 4 gives way to the largest, 0.
+  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 4}).lights, (std::vector<int>{3, 0}));
+  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {1, 0}).lights, (std::vector<int>{1, 0}));
+  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {5, 4}).lights, (std::vector<int>{0, 1}));
+  EXPECT_DOUBLE_EQ(chooseRsmLights(lights, flux, 2, {3, 4}).fluxShare, 15.0 / 78.0);
 }
 
 // |caches − exact| per covered pixel over the pixel's total (direct + indirect) radiance:

@@ -1,0 +1,65 @@
+#pragma once
+// Which lights get reflective shadow maps (render/rsm.h) in a frame of `--indirect`: the spot
+// and directional lights that send the most flux into the view, weighed over a sample of the
+// frame's covered pixels, every light at every sample on the GPU (glsl/rsm_choice.frag).
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "gl/objects.h"
+#include "render/gpu_scene.h"
+#include "scene/scene.h"
+
+namespace manylight {
+
+// The lights given maps for one frame and what they cover.
+struct RsmChoice {
+  std::vector<int> lights;  // scene indices: those kept from the frame before, then by flux
+  int candidates = 0;       // spot and directional lights
+  // The chosen lights' share of the direct flux the view receives: of Σ over the sampled
+  // pixels of every light's irradiance there (luminance), the part the chosen ones give.
+  // 1 where no light reaches the view.
+  double fluxShare = 1.0;
+};
+
+// Pixels the choice samples at most, on a regular grid over the image: 256, or fewer (down
+// to 32) where lights × samples would pass kRsmChoiceEvaluations.
+inline constexpr int kRsmChoiceSamples = 256;
+inline constexpr int kRsmChoiceMinSamples = 32;
+inline constexpr double kRsmChoiceEvaluations = 1 << 22;
+
+struct RsmSamples {
+  std::vector<glm::vec3> position, normal;  // normals of unit length
+};
+
+// The samples for `lights` lights, from a G-buffer read back as RGBA floats (`position`,
+// `normal`; normal.w 0 off the geometry).
+RsmSamples sampleRsmChoice(const std::vector<float>& position, const std::vector<float>& normal,
+                           std::size_t lights);
+
+// The `count` spot and directional `lights` of the largest `flux` (per light, scene order: Σ
+// over the samples of the luminance of its irradiance); ties go to the lower index. But the
+// lights of the frame before's choice, `previous`, keep their places (in its order) while
+// their flux is at least kRsmChoiceKeep × the weakest of the `count` largest: a playback
+// whose view changes a little keeps its maps and caches, instead of trading lights whose
+// flux differs by the sampling's noise.
+RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<double>& flux,
+                          int count, const std::vector<int>& previous = {});
+inline constexpr double kRsmChoiceKeep = 0.5;
+
+// The flux of every light on the GPU.
+class LightFlux {
+ public:
+  LightFlux() = default;
+  // Per light of `lights` (scene order), which `gpu`'s light texture holds in
+  // lightOrder(lights): Σ over `samples` of the luminance of its irradiance, in float. Needs a
+  // bound vertex array; throws gl::GlError.
+  std::vector<double> measure(const GpuScene& gpu, const std::vector<Light>& lights,
+                              const RsmSamples& samples);
+
+ private:
+  gl::Texture samples_, flux_;
+  gl::Framebuffer framebuffer_;
+  int height_ = 0;
+};
+
+}  // namespace manylight
