@@ -2,8 +2,8 @@
 # The gallery: every renderable real asset of ../shared/scenes (when that folder exists; not
 # the validator and defect collections) and the project's own scenes/, each rendered with the
 # bare `render` command (its defaults: thumbnail framing, default rig, auto exposure, PBR
-# Neutral), in one contact sheet with their names. Look at it before and after any change to
-# shading, loading or output.
+# Neutral), in one contact sheet with their names, and the Cornell-like room without and with
+# indirect light. Look at it before and after any change to shading, loading or output.
 # Usage: bench/gallery.sh [OUT.png [render options...]]   (default docs/gallery.png; run from
 # the repository root after a build). With GALLERY_RENDERS=DIR each scene's render is kept
 # there too (DIR/NAME.png), for bench/clipped_black.py DIR.
@@ -23,13 +23,13 @@ if [ -d "$shared" ]; then
 fi
 tiles=()
 i=0
-for f in "${files[@]}"; do
-  name="${f#"$shared"/}"
-  name="${name//\/glTF\//\/}"
+# One tile: render FILE (with OPTIONS after the gallery's own) and label it LABEL.
+add_tile() {
+  local f="$1" name="$2"
+  shift 2
   i=$((i + 1))
-  if "$bin/manylight" render "$f" -o "$work/r$i.png" --size "$tile" "$@" 2>"$work/e$i.txt"; then
-    label="$name"
-  else
+  local label="$name"
+  if ! "$bin/manylight" render "$f" -o "$work/r$i.png" --size "$size" "${options[@]}" "$@" 2>"$work/e$i.txt"; then
     oiiotool --pattern constant:color=0,0,0,0 "$tile" 4 -o "$work/r$i.png"
     label="$name: refused"
   fi
@@ -38,9 +38,23 @@ for f in "${files[@]}"; do
   tiles+=("$work/t$(printf %03d $i).png")
   if [ -n "${GALLERY_RENDERS:-}" ]; then
     mkdir -p "$GALLERY_RENDERS"
-    cp "$work/r$i.png" "$GALLERY_RENDERS/$(printf %s "$name" | tr '/' '_' | sed 's/\.[^.]*$//').png"
+    cp "$work/r$i.png" "$GALLERY_RENDERS/$(printf %s "$name" | tr '/: ' '___' | sed 's/\.[^.]*$//').png"
   fi
+}
+options=("$@")
+size="$tile"
+for f in "${files[@]}"; do
+  name="${f#"$shared"/}"
+  add_tile "$f" "${name//\/glTF\//\/}"
 done
+# The Cornell-like room of docs/indirect.md with a block: direct light only, then one bounce
+# from the light caches and the exact gather. Indirect light has no visibility: no indirect
+# shadow at the block's foot, and the block's own faces lit through it.
+"$bin/manylight_make_scene" "$work/cornell.glb" 1 --cornell --block >/dev/null
+size=200x130  # the label below the room's bright floor
+add_tile "$work/cornell.glb" "cornell: direct only" --indirect none
+add_tile "$work/cornell.glb" "cornell: --indirect caches" --indirect caches
+add_tile "$work/cornell.glb" "cornell: --indirect exact" --indirect exact
 columns=6
 rows=$(((${#tiles[@]} + columns - 1) / columns))
 mkdir -p "$(dirname "$out")"

@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: manylight_make_scene OUT.gltf|OUT.glb LIGHTS [SEED] [--point-only] "
-                 "[--specular] [--untextured] [--layout NAME] [--cornell]\n");
+                 "[--specular] [--untextured] [--layout NAME] [--cornell [--block]]\n");
     return 2;
   }
   manylight::RoomOptions o;
@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
       manylight::CornellOptions c;
       c.extraLights = std::max(o.lightCount - 1, 0);
       c.seed = o.seed;
+      for (int i = 3; i < argc; ++i) c.block = c.block || std::string(argv[i]) == "--block";
       manylight::writeCornellScene(argv[1], c);
     } else {
       manylight::writeRoomScene(argv[1], o);

@@ -43,6 +43,11 @@ void writeCornellScene(const std::string& path, const CornellOptions& o) {
     const glm::vec3 centre = w.origin + 0.5f * (w.u + w.v) - w.normal * (0.5f * kWallThickness);
     b.addBox(centre, size, b.addMaterial(m));
   }
+  if (o.block) {
+    BuilderMaterial m;
+    m.baseColor = glm::vec4(0.75f, 0.75f, 0.75f, 1.0f);
+    b.addBox({0.4f, 0.4f, -0.3f}, {0.5f, 0.8f, 0.5f}, b.addMaterial(m));
+  }
   b.addPerspectiveCamera({0.0f, 1.0f, 3.4f}, {0.0f, 1.0f, 0.0f}, 0.75f);
   b.addLight(cornellSpot());
   std::mt19937 rng(o.seed);
