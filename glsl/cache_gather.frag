@@ -6,7 +6,8 @@
 //   Φ · max(n_t·(−ω), 0) / (π · (d² + A/π))  per unit max(n·ω, 0),
 // so a pixel's irradiance E(n) = Σ that · max(n·ω, 0), as glsl/indirect_exact.frag sums it;
 // times farWeight(d, r), r the larger of the map's uNearRadius and kNearCells of the cache's
-// cells: the pixels gather the rest themselves (render/near_field.h).
+// cells: the pixels gather the rest themselves (render/near_field.h). A cluster of texels far
+// enough from the cache counts as one texel (render/rsm_clusters.h).
 uniform sampler2D uCachePosition;
 uniform int uFirstCache;  // the caches before it kept their light from the frame before
 uniform int uCacheCount;
@@ -17,6 +18,10 @@ uniform int uRsmSize;
 uniform int uFirstRow;
 uniform int uRows;
 uniform float uNearRadius;
+// The map's clusters (render/rsm_clusters.h), kRsmClusterEdge² texels each:
+uniform sampler2D uClusterCentre;  // xyz, radius (< 0: none reflects)
+uniform sampler2D uClusterNormal;  // mean unit normal, 1 where its texels share its facing
+uniform sampler2D uClusterFlux;    // Σ flux, mean texel area
 
 out vec4 oSh0;
 out vec4 oSh1;
@@ -25,6 +30,33 @@ out vec4 oSh3;
 out vec4 oSh4;
 out vec4 oSh5;
 out vec4 oSh6;
+
+// Adds to c the far light of a texel (flux.rgb, area flux.w) at y, of normal nt, arriving at
+// q for a near radius r, projected on the basis.
+void addTexel(vec4 flux, vec3 y, vec3 nt, vec3 q, float r, inout vec3 c[9]) {
+  vec3 w = y - q;
+  float d2 = max(dot(w, w), kMinDistanceSquared);
+  float invD = inversesqrt(d2);
+  vec3 omega = w * invD;
+  float s = max(-dot(nt, omega), 0.0) / (kPi * (d2 + flux.w / kPi)) * farWeight(d2 * invD, r);
+  if (s == 0.0) return;
+  float y9[9];
+  shBasis(omega, y9);
+  vec3 f = flux.rgb * s;
+  // Written out: llvmpipe counts an inner loop's iterations against the invocation's
+  // 65,535 (render/rsm.h, drawRsmRowPasses).
+  c[0] += f * y9[0];
+  c[1] += f * y9[1];
+  c[2] += f * y9[2];
+  c[3] += f * y9[3];
+#ifdef SH_L2
+  c[4] += f * y9[4];
+  c[5] += f * y9[5];
+  c[6] += f * y9[6];
+  c[7] += f * y9[7];
+  c[8] += f * y9[8];
+#endif
+}
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -36,35 +68,25 @@ void main() {
   float r = max(uNearRadius, kNearCells * node.w);
   vec3 c[9] = vec3[9](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
                       vec3(0.0), vec3(0.0), vec3(0.0));
-  for (int row = uFirstRow; row < uFirstRow + uRows; ++row) {
-    for (int column = 0; column < uRsmSize; ++column) {
-      ivec2 t = ivec2(column, row);
-      vec4 flux = texelFetch(uRsmFlux, t, 0);
-      if (flux.w == 0.0) continue;
-      vec3 w = texelFetch(uRsmPosition, t, 0).xyz - q;
-      vec3 nt = texelFetch(uRsmNormal, t, 0).xyz;
-      float d2 = max(dot(w, w), kMinDistanceSquared);
-      float invD = inversesqrt(d2);
-      vec3 omega = w * invD;
-      float s = max(-dot(nt, omega), 0.0) / (kPi * (d2 + flux.w / kPi)) *
-                farWeight(d2 * invD, r);
-      if (s == 0.0) continue;
-      float y[9];
-      shBasis(omega, y);
-      vec3 f = flux.rgb * s;
-      // Written out: llvmpipe counts an inner loop's iterations against the invocation's
-      // 65,535 (render/rsm.h, drawRsmRowPasses).
-      c[0] += f * y[0];
-      c[1] += f * y[1];
-      c[2] += f * y[2];
-      c[3] += f * y[3];
-#ifdef SH_L2
-      c[4] += f * y[4];
-      c[5] += f * y[5];
-      c[6] += f * y[6];
-      c[7] += f * y[7];
-      c[8] += f * y[8];
-#endif
+  const int kEdge = kRsmClusterEdge;
+  for (int by = uFirstRow / kEdge; by < (uFirstRow + uRows) / kEdge; ++by) {
+    for (int bx = 0; bx < uRsmSize / kEdge; ++bx) {
+      ivec2 b = ivec2(bx, by);
+      vec4 centre = texelFetch(uClusterCentre, b, 0);
+      if (centre.w < 0.0) continue;
+      vec4 mean = texelFetch(uClusterNormal, b, 0);
+      float d = length(centre.xyz - q);
+      if (mean.w > 0.0 && d > max(kRsmClusterDistance * centre.w, 2.0 * r + centre.w)) {
+        addTexel(texelFetch(uClusterFlux, b, 0), centre.xyz, mean.xyz, q, r, c);
+        continue;
+      }
+      for (int j = 0; j < kEdge * kEdge; ++j) {
+        ivec2 t = b * kEdge + ivec2(j % kEdge, j / kEdge);
+        vec4 flux = texelFetch(uRsmFlux, t, 0);
+        if (flux.w == 0.0) continue;
+        addTexel(flux, texelFetch(uRsmPosition, t, 0).xyz, texelFetch(uRsmNormal, t, 0).xyz, q,
+                 r, c);
+      }
     }
   }
   // The coefficients' 27 floats, RGB after RGB, in seven texels (three for SH L1).

@@ -8,6 +8,7 @@
 #include "cuts/far_field.h"
 #include "cuts/tile_cuts.h"
 #include "render/cache_layout.h"
+#include "render/rsm_clusters.h"
 #include "scene/shading_model.h"
 
 namespace manylight::glsl {
@@ -105,6 +106,8 @@ std::string layoutPrelude() {
   out += constLine("float", "kNearCells", floatLiteral(kNearCells));
   out += constLine("float", "kPlaneTolerance", floatLiteral(kPlaneTolerance));
   out += constLine("int", "kRsmChoiceWidth", std::to_string(kRsmChoiceWidth));
+  out += constLine("int", "kRsmClusterEdge", std::to_string(kRsmClusterEdge));
+  out += constLine("float", "kRsmClusterDistance", floatLiteral(kRsmClusterDistance));
   out += constLine("float", "kMinDistanceSquared", floatLiteral(shading::kMinDistanceSquared));
   out += constLine("float", "kDielectricF0", floatLiteral(shading::kDielectricF0));
   out += constLine("float", "kMaxPhongExponent", floatLiteral(shading::kMaxPhongExponent));

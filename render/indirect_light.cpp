@@ -118,9 +118,13 @@ void IndirectLight::renderMaps(const Scene& scene, const GpuScene& gpu,
     glBindVertexArray(emptyVao_.id());
     renderFlux(*m.rsm, m.light, rsmCamera);
     const std::vector<float> flux = m.rsm->read(GBuffer::kRadiance);
+    const std::vector<float> position = m.rsm->read(GBuffer::kPosition);
+    const std::vector<float> normal = m.rsm->read(GBuffer::kNormal);
     m.texels = reflectingTexels(flux);
     m.nearRadius = nearRadius(flux);
-    near_.add(m.rsm->read(GBuffer::kPosition), m.rsm->read(GBuffer::kNormal), flux, m.nearRadius);
+    near_.add(position, normal, flux, m.nearRadius);
+    if (!m.clusters) m.clusters = std::make_unique<RsmClusterTextures>();
+    m.clusters->upload(clusterRsm(position, normal, flux, rsmSize_));
   }
 }
 
@@ -163,7 +167,8 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   start = Clock::now();
   glBindVertexArray(emptyVao_.id());
   for (const Map& m : maps_)
-    stats.passes += caches ? caches_->gather(*m.rsm, m.nearRadius) : gather(camera, *m.rsm);
+    stats.passes +=
+        caches ? caches_->gather(*m.rsm, *m.clusters, m.nearRadius) : gather(camera, *m.rsm);
   glFinish();
   stats.gatherMs = msSince(start);
   if (caches) {

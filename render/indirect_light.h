@@ -83,6 +83,7 @@ class IndirectLight {
   struct Map {
     Light light;
     std::unique_ptr<GBuffer> rsm;
+    std::unique_ptr<RsmClusterTextures> clusters;
     float nearRadius = 0.0f;
     long long texels = 0;  // that reflect flux
   };

@@ -243,7 +243,7 @@ void LightCaches::copyKept(const Targets& from, const Targets& to) {
   glActiveTexture(GL_TEXTURE0);
 }
 
-int LightCaches::gather(const GBuffer& rsm, float nearRadius) {
+int LightCaches::gather(const GBuffer& rsm, const RsmClusterTextures& clusters, float nearRadius) {
   if (count_ == kept_) return 0;
   const gl::Program& p =
       gl::cachedProgram("fullscreen.vert", "cache_gather.frag", basisDefines(shL2_), kShOutputs);
@@ -258,8 +258,13 @@ int LightCaches::gather(const GBuffer& rsm, float nearRadius) {
   glUniform1i(p.uniform("uFirstCache"), kept_);
   glUniform1i(p.uniform("uCacheCount"), count_);
   glUniform1f(p.uniform("uNearRadius"), nearRadius);
+  bindSampler(p, "uClusterCentre", GL_TEXTURE_2D, clusters.centre.id(), 4);
+  bindSampler(p, "uClusterNormal", GL_TEXTURE_2D, clusters.normal.id(), 5);
+  bindSampler(p, "uClusterFlux", GL_TEXTURE_2D, clusters.flux.id(), 6);
   scissorCaches(width_, height_, kept_, count_);
-  const int passes = drawRsmRowPasses(p, rsm, 1);
+  // At most one iteration per cluster besides one per texel.
+  const int passes = drawRsmRowPasses(p, rsm, 1, kRsmClusterEdge,
+                                      1.0 + 1.0 / double(kRsmClusterEdge * kRsmClusterEdge));
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_BLEND);
   return passes;

@@ -20,6 +20,7 @@
 #include "gl/objects.h"
 #include "render/cache_layout.h"
 #include "render/gbuffer.h"
+#include "render/rsm.h"
 #include "scene/scene.h"
 
 namespace manylight {
@@ -79,9 +80,9 @@ class LightCaches {
   int kept() const { return kept_; }  // caches that kept their coefficients at the last upload
   const CacheGrid& grid() const { return grid_; }
   // Adds one map's far light to the caches the last upload did not keep
-  // (glsl/cache_gather.frag), for texels of near radius `nearRadius` (render/near_field.h);
-  // returns the passes.
-  int gather(const GBuffer& rsm, float nearRadius);
+  // (glsl/cache_gather.frag), for texels of near radius `nearRadius` (render/near_field.h),
+  // through the map's `clusters`; returns the passes.
+  int gather(const GBuffer& rsm, const RsmClusterTextures& clusters, float nearRadius);
   // Adds every pixel's interpolated indirect light to `camera`'s radiance target.
   void interpolate(const GBuffer& camera);
 

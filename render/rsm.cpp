@@ -38,7 +38,8 @@ RsmView rsmView(const Light& light, const Bounds& bounds, int size) {
 
 using namespace gl::api;
 
-int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUnit) {
+int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUnit, int rowAlign,
+                     double iterationsPerTexel) {
   const GBuffer::Target targets[] = {GBuffer::kPosition, GBuffer::kNormal, GBuffer::kRadiance};
   const char* names[] = {"uRsmPosition", "uRsmNormal", "uRsmFlux"};
   for (int i = 0; i < 3; ++i) {
@@ -47,7 +48,8 @@ int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUn
     glUniform1i(program.uniform(names[i]), firstUnit + i);
   }
   glUniform1i(program.uniform("uRsmSize"), rsm.width());
-  const int rows = std::max(1, 65000 / std::max(rsm.width(), 1) - 1);
+  const int fit = int(65000.0 / (double(std::max(rsm.width(), 1)) * iterationsPerTexel)) - 1;
+  const int rows = std::max(rowAlign, fit / rowAlign * rowAlign);
   int passes = 0;
   for (int first = 0; first < rsm.height(); first += rows, ++passes) {
     glUniform1i(program.uniform("uFirstRow"), first);
@@ -56,6 +58,19 @@ int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUn
   }
   glActiveTexture(GL_TEXTURE0);
   return passes;
+}
+
+void RsmClusterTextures::upload(const RsmClusters& clusters) {
+  const std::vector<glm::vec4>* data[] = {&clusters.centre, &clusters.normal, &clusters.flux};
+  const gl::Texture* textures[] = {&centre, &normal, &flux};
+  for (int i = 0; i < 3; ++i) {
+    glBindTexture(GL_TEXTURE_2D, textures[i]->id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, clusters.size, clusters.size, 0, GL_RGBA, GL_FLOAT,
+                 data[i]->data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 }  // namespace manylight

@@ -7,6 +7,7 @@
 
 #include "gl/objects.h"
 #include "render/gbuffer.h"
+#include "render/rsm_clusters.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
@@ -29,8 +30,17 @@ inline constexpr float kMaxRsmHalfAngle = 1.3089969f;  // 75°
 // Draws `program` (in use, its target and other inputs bound) once per band of the map's
 // rows: the map's position, normal and flux targets on units `firstUnit` … `firstUnit` + 2
 // as uRsmPosition, uRsmNormal, uRsmFlux, its size as uRsmSize, and each band as uFirstRow
-// and uRows. A band has as many rows as keep a loop over its texels under llvmpipe's
-// 65,535 iterations per invocation. Returns the passes.
-int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUnit);
+// and uRows. A band has as many rows (a multiple of `rowAlign`) as keep a loop of
+// `iterationsPerTexel` per texel under llvmpipe's 65,535 iterations per invocation. Returns
+// the passes.
+int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUnit,
+                     int rowAlign = 1, double iterationsPerTexel = 1.0);
+
+// A map's clusters (render/rsm_clusters.h) as three RGBA32F textures of clusters a side.
+struct RsmClusterTextures {
+  gl::Texture centre, normal, flux;
+  // Throws gl::GlError.
+  void upload(const RsmClusters& clusters);
+};
 
 }  // namespace manylight

@@ -275,21 +275,6 @@ TEST(Indirect, TheChoiceWeighsTheLightsAsTheShadingModelDoes) {
             chooseRsmLights(scene.lights, oracle, 4).lights);
 }
 
-// The frame before's lights keep their maps, in their order, while their flux is at least
-// kRsmChoiceKeep × the weakest of the largest; a point light never gets one.
-TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
-  std::vector<Light> lights(6);
-  for (Light& l : lights) l.type = LightType::Spot;
-  lights[5].type = LightType::Point;
-  const std::vector<double> flux = {10.0, 8.0, 3.0, 5.0, 2.0, 50.0};
-  EXPECT_EQ(chooseRsmLights(lights, flux, 2).lights, (std::vector<int>{0, 1}));
-  // 5 ≥ 0.5 × 8 stays, first; 2 < 4 gives way to the largest, 0.
-  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 4}).lights, (std::vector<int>{3, 0}));
-  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {1, 0}).lights, (std::vector<int>{1, 0}));
-  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {5, 4}).lights, (std::vector<int>{0, 1}));
-  EXPECT_DOUBLE_EQ(chooseRsmLights(lights, flux, 2, {3, 4}).fluxShare, 15.0 / 78.0);
-}
-
 // |caches − exact| per covered pixel over the pixel's total (direct + indirect) radiance:
 // its mean and 99th percentile.
 struct CacheError {

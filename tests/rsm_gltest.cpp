@@ -1,0 +1,62 @@
+// Parts of `--indirect` that need no context: the map choice's rule and the map clusters.
+#include <gtest/gtest.h>
+
+#include "render/rsm_choice.h"
+#include "render/rsm_clusters.h"
+
+namespace manylight::testing {
+namespace {
+
+// The frame before's lights keep their maps, in their order, while their flux is at least
+// kRsmChoiceKeep × the weakest of the largest; a point light never gets one.
+TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
+  std::vector<Light> lights(6);
+  for (Light& l : lights) l.type = LightType::Spot;
+  lights[5].type = LightType::Point;
+  const std::vector<double> flux = {10.0, 8.0, 3.0, 5.0, 2.0, 50.0};
+  EXPECT_EQ(chooseRsmLights(lights, flux, 2).lights, (std::vector<int>{0, 1}));
+  // 5 ≥ 0.5 × 8 stays, first; 2 < 4 gives way to the largest, 0.
+  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 4}).lights, (std::vector<int>{3, 0}));
+  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {1, 0}).lights, (std::vector<int>{1, 0}));
+  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {5, 4}).lights, (std::vector<int>{0, 1}));
+  EXPECT_DOUBLE_EQ(chooseRsmLights(lights, flux, 2, {3, 4}).fluxShare, 15.0 / 78.0);
+}
+
+// An 8 × 8 map: the lower-left block flat on z = 0 with equal flux, the lower-right one
+// with its right half facing +x, the top two reflecting nothing but one texel.
+TEST(Indirect, ClustersHoldTheirTexels) {
+  const int size = 8;
+  std::vector<float> position(4 * size * size, 0.0f), normal(position.size(), 0.0f),
+      flux(position.size(), 0.0f);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t t = 4 * std::size_t(y * size + x);
+      if (y >= 4 && !(x == 6 && y == 7)) continue;
+      const bool folded = x >= 6;
+      position[t] = float(x);
+      position[t + 1] = float(y);
+      normal[t + 2] = folded ? 0.0f : 1.0f;
+      normal[t] = folded ? 1.0f : 0.0f;
+      flux[t] = flux[t + 1] = flux[t + 2] = 1.0f;
+      flux[t + 3] = 0.5f;
+    }
+  const RsmClusters c = clusterRsm(position, normal, flux, size);
+  ASSERT_EQ(c.size, 2);
+  // The flat block: centre (1.5, 1.5, 0), radius the half diagonal, 16 texels' flux.
+  EXPECT_FLOAT_EQ(c.centre[0].x, 1.5f);
+  EXPECT_FLOAT_EQ(c.centre[0].y, 1.5f);
+  EXPECT_NEAR(c.centre[0].w, 1.5f * std::sqrt(2.0f), 1e-5f);
+  EXPECT_EQ(c.normal[0], glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
+  EXPECT_EQ(c.flux[0], glm::vec4(16.0f, 16.0f, 16.0f, 0.5f));
+  // The folded block: half its texels face +z, half +x: not flat.
+  EXPECT_EQ(c.normal[1].w, 0.0f);
+  EXPECT_NEAR(glm::length(glm::vec3(c.normal[1])), 1.0f, 1e-5f);
+  // Nothing reflects in the top-left block; one texel in the top-right.
+  EXPECT_LT(c.centre[2].w, 0.0f);
+  EXPECT_EQ(c.flux[2], glm::vec4(0.0f));
+  EXPECT_EQ(c.centre[3], glm::vec4(6.0f, 7.0f, 0.0f, 0.0f));
+  EXPECT_EQ(c.flux[3], glm::vec4(1.0f, 1.0f, 1.0f, 0.5f));
+}
+
+}  // namespace
+}  // namespace manylight::testing
