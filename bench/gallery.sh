@@ -29,7 +29,7 @@ add_tile() {
   shift 2
   i=$((i + 1))
   local label="$name"
-  if ! "$bin/manylight" render "$f" -o "$work/r$i.png" --size "$size" "${options[@]}" "$@" 2>"$work/e$i.txt"; then
+  if ! "$bin/manylight" render "$f" -o "$work/r$i.png" --size "$size" ${options[@]+"${options[@]}"} "$@" 2>"$work/e$i.txt"; then
     oiiotool --pattern constant:color=0,0,0,0 "$tile" 4 -o "$work/r$i.png"
     label="$name: refused"
   fi

@@ -102,7 +102,7 @@ struct CornellOptions {
   int extraLights = 0;
   std::uint32_t seed = 1;
   // A white block standing on the floor, right of the spot, 0.5 × 0.8 × 0.5: the room is then
-  // no longer convex, and shows what indirect light without visibility misses (the gallery).
+  // not convex, and shows what indirect light without visibility misses (the gallery).
   bool block = false;
 };
 void writeCornellScene(const std::string& path, const CornellOptions& options);

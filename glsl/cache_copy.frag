@@ -11,6 +11,7 @@ uniform sampler2D uSh3;
 uniform sampler2D uSh4;
 uniform sampler2D uSh5;
 uniform sampler2D uSh6;
+uniform sampler2D uCorrection;
 
 out vec4 oSh0;
 out vec4 oSh1;
@@ -19,6 +20,7 @@ out vec4 oSh3;
 out vec4 oSh4;
 out vec4 oSh5;
 out vec4 oSh6;
+out vec4 oCorrection;
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -29,6 +31,7 @@ void main() {
   oSh0 = texelFetch(uSh0, at, 0);
   oSh1 = texelFetch(uSh1, at, 0);
   oSh2 = texelFetch(uSh2, at, 0);
+  oCorrection = texelFetch(uCorrection, at, 0);
 #ifdef SH_L2
   oSh3 = texelFetch(uSh3, at, 0);
   oSh4 = texelFetch(uSh4, at, 0);

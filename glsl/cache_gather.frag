@@ -7,8 +7,12 @@
 // so a pixel's irradiance E(n) = Σ that · max(n·ω, 0), as glsl/indirect_exact.frag sums it;
 // times farWeight(d, r), r the larger of the map's uNearRadius and kNearCells of the cache's
 // cells: the pixels gather the rest themselves (render/near_field.h). A cluster of texels far
-// enough from the cache counts as one texel (render/rsm_clusters.h).
+// enough from the cache counts as one texel (render/rsm_clusters.h). Beside the coefficients,
+// the cache's correction for its normal n_c: the exact far irradiance there, Σ that ·
+// max(n_c·ω, 0), less what the coefficients give n_c (linear in the light, so it adds up
+// over maps and passes as they do).
 uniform sampler2D uCachePosition;
+uniform sampler2D uCacheNormal;  // the normal the cache's correction is exact for
 uniform int uFirstCache;  // the caches before it kept their light from the frame before
 uniform int uCacheCount;
 uniform sampler2D uRsmPosition;
@@ -30,10 +34,12 @@ out vec4 oSh3;
 out vec4 oSh4;
 out vec4 oSh5;
 out vec4 oSh6;
+out vec4 oCorrection;
 
 // Adds to c the far light of a texel (flux.rgb, area flux.w) at y, of normal nt, arriving at
 // q for a near radius r, projected on the basis.
-void addTexel(vec4 flux, vec3 y, vec3 nt, vec3 q, float r, inout vec3 c[9]) {
+void addTexel(vec4 flux, vec3 y, vec3 nt, vec3 q, float r, vec3 nc, inout vec3 c[9],
+              inout vec3 exact) {
   vec3 w = y - q;
   float d2 = max(dot(w, w), kMinDistanceSquared);
   float invD = inversesqrt(d2);
@@ -43,6 +49,7 @@ void addTexel(vec4 flux, vec3 y, vec3 nt, vec3 q, float r, inout vec3 c[9]) {
   float y9[9];
   shBasis(omega, y9);
   vec3 f = flux.rgb * s;
+  exact += f * max(dot(nc, omega), 0.0);
   // Written out: llvmpipe counts an inner loop's iterations against the invocation's
   // 65,535 (render/rsm.h, drawRsmRowPasses).
   c[0] += f * y9[0];
@@ -65,6 +72,8 @@ void main() {
   if (cache < uFirstCache || cache >= uCacheCount) discard;
   vec4 node = texelFetch(uCachePosition, px, 0);  // position, cell edge
   vec3 q = node.xyz;
+  vec3 nc = texelFetch(uCacheNormal, px, 0).xyz;
+  vec3 exact = vec3(0.0);
   float r = max(uNearRadius, kNearCells * node.w);
   vec3 c[9] = vec3[9](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
                       vec3(0.0), vec3(0.0), vec3(0.0));
@@ -77,7 +86,7 @@ void main() {
       vec4 mean = texelFetch(uClusterNormal, b, 0);
       float d = length(centre.xyz - q);
       if (mean.w > 0.0 && d > max(kRsmClusterDistance * centre.w, 2.0 * r + centre.w)) {
-        addTexel(texelFetch(uClusterFlux, b, 0), centre.xyz, mean.xyz, q, r, c);
+        addTexel(texelFetch(uClusterFlux, b, 0), centre.xyz, mean.xyz, q, r, nc, c, exact);
         continue;
       }
       for (int j = 0; j < kEdge * kEdge; ++j) {
@@ -85,7 +94,7 @@ void main() {
         vec4 flux = texelFetch(uRsmFlux, t, 0);
         if (flux.w == 0.0) continue;
         addTexel(flux, texelFetch(uRsmPosition, t, 0).xyz, texelFetch(uRsmNormal, t, 0).xyz, q,
-                 r, c);
+                 r, nc, c, exact);
       }
     }
   }
@@ -97,4 +106,5 @@ void main() {
   oSh4 = vec4(c[5].gb, c[6].rg);
   oSh5 = vec4(c[6].b, c[7]);
   oSh6 = vec4(c[8], 0.0);
+  oCorrection = vec4(exact - shIrradiance(c, nc), 0.0);
 }

@@ -24,3 +24,15 @@ void shBasis(vec3 d, out float y[9]) {
 
 // The clamped cosine's convolution weight of coefficient k.
 float shCosine(int k) { return k == 0 ? kPi : (k < 4 ? 2.0 * kPi / 3.0 : kPi / 4.0); }
+
+// The irradiance coefficients `c` give unit normal n, through the clamped cosine's
+// convolution; unclamped, so linear in c (a sum over parts of the light is the sum of theirs).
+vec3 shIrradiance(vec3 c[9], vec3 n) {
+  float y[9];
+  shBasis(n, y);
+  vec3 e = shCosine(0) * y[0] * c[0] + shCosine(1) * (y[1] * c[1] + y[2] * c[2] + y[3] * c[3]);
+#ifdef SH_L2
+  e += shCosine(4) * (y[4] * c[4] + y[5] * c[5] + y[6] * c[6] + y[7] * c[7] + y[8] * c[8]);
+#endif
+  return e;
+}

@@ -91,7 +91,8 @@ std::vector<ProgramVariants> programs() {
   out.push_back({"fullscreen.vert", "rsm_flux.frag", {"oRadiance"}, {{}}});
   out.push_back({"fullscreen.vert", "indirect_exact.frag", {"oRadiance"}, {{}}});
   out.push_back({"fullscreen.vert", "rsm_choice.frag", {"oFlux"}, {{}}});
-  const std::vector<std::string> sh = {"oSh0", "oSh1", "oSh2", "oSh3", "oSh4", "oSh5", "oSh6"};
+  const std::vector<std::string> sh = {"oSh0", "oSh1", "oSh2", "oSh3",
+                                       "oSh4", "oSh5", "oSh6", "oCorrection"};
   out.push_back({"fullscreen.vert", "cache_gather.frag", sh, {{}, {"SH_L2"}}});
   out.push_back({"fullscreen.vert", "cache_copy.frag", sh, {{}, {"SH_L2"}}});
   out.push_back({"fullscreen.vert", "cache_interpolate.frag", {"oRadiance"}, {{}, {"SH_L2"}}});
@@ -105,6 +106,8 @@ std::string layoutPrelude() {
   out += constLine("float", "kBandCells", floatLiteral(kBandCells));
   out += constLine("float", "kNearCells", floatLiteral(kNearCells));
   out += constLine("float", "kPlaneTolerance", floatLiteral(kPlaneTolerance));
+  out += constLine("float", "kCorrectionCosine", floatLiteral(kCorrectionCosine));
+  out += constLine("int", "kNormalBinGrid", std::to_string(kNormalBinGrid));
   out += constLine("int", "kRsmChoiceWidth", std::to_string(kRsmChoiceWidth));
   out += constLine("int", "kRsmClusterEdge", std::to_string(kRsmClusterEdge));
   out += constLine("float", "kRsmClusterDistance", floatLiteral(kRsmClusterDistance));

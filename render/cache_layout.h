@@ -8,12 +8,20 @@ namespace manylight {
 inline constexpr float kBandCells = 2.0f;
 // A texel's near radius (render/near_field.h) is at least this many cells of the cascade
 // whose caches receive its light, so the far part is smooth between caches.
-inline constexpr float kNearCells = 1.0f;
+inline constexpr float kNearCells = 2.0f;
 
 // The near field's texels lie in one plane when within this × the near grid's cell of it; a
 // pixel as close to the plane, or behind it, skips them (NearField::cellPlanes), and the light it
 // misses is of this order relative to theirs.
 inline constexpr float kPlaneTolerance = 1e-3f;
+
+// A cache holds, beside its coefficients, the exact far irradiance for one normal (its normal
+// bin's centre, render/light_caches.h) as a correction to them; a pixel takes all of it at
+// that normal, none beyond this cosine to it (11°, under the least angle from a bin's centre
+// to its edge), and a smooth part between (glsl/cache_interpolate.frag).
+inline constexpr float kCorrectionCosine = 0.981f;
+// Normal bins a cube face's side (odd, so that the axis is a bin's centre).
+inline constexpr int kNormalBinGrid = 3;
 
 // The lights' flux target of the map choice (render/rsm_choice.h) is this many texels wide.
 inline constexpr int kRsmChoiceWidth = 1024;

@@ -95,7 +95,7 @@ CacheGrid frameCacheGrid(const IndirectSettings& settings, const Bounds& bounds,
 IndirectLight::IndirectLight(int rsmSize) : rsmSize_(rsmSize) {}
 
 bool IndirectLight::sameMaps(const std::vector<Light>& lights, const RsmChoice& choice) const {
-  if (!mapsMade_ || choice.lights != mapLights_) return false;
+  if (mapGeneration_ == 0 || choice.lights != mapLights_) return false;
   for (std::size_t i = 0; i < maps_.size(); ++i)
     if (!sameLight(maps_[i].light, lights[std::size_t(mapLights_[i])])) return false;
   return true;
@@ -107,7 +107,7 @@ void IndirectLight::renderMaps(const Scene& scene, const GpuScene& gpu,
   const Bounds bounds = scene.bounds();
   maps_.resize(choice.lights.size());
   mapLights_ = choice.lights;
-  mapsMade_ = true;
+  ++mapGeneration_;
   near_.clear();
   for (std::size_t i = 0; i < maps_.size(); ++i) {
     Map& m = maps_[i];
@@ -157,7 +157,11 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     start = Clock::now();
     const CacheGrid grid = frameCacheGrid(settings, scene.bounds(), view.eye);
     if (!caches_) caches_ = std::make_unique<LightCaches>();
-    caches_->upload(grid, allocateCaches(grid, position, normal), settings.shL2, stats.mapsKept);
+    // Kept only from caches gathered from these very maps (an `exact` frame between may have
+    // made others).
+    caches_->upload(grid, allocateCaches(grid, position, normal), settings.shL2,
+                    stats.mapsKept && cachesGeneration_ == mapGeneration_);
+    cachesGeneration_ = mapGeneration_;
     stats.caches = caches_->count();
     stats.cachesKept = caches_->kept();
     stats.cascades = grid.cascades;

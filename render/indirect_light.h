@@ -93,8 +93,9 @@ class IndirectLight {
   int rsmSize_;
   std::vector<Map> maps_;       // the last frame's, in the order of its choice
   std::vector<int> mapLights_;  // their scene indices
-  bool mapsMade_ = false;
-  gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
+  int mapGeneration_ = 0;       // maps rendered so far (0: none)
+  int cachesGeneration_ = 0;    // the maps the caches were gathered from
+  gl::VertexArray emptyVao_;    // the full-screen triangle needs a bound VAO in core profile
   std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches
   NearField near_;
   LightFlux flux_;

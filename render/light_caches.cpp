@@ -63,8 +63,11 @@ int cascadeOf(const CacheGrid& grid, glm::vec3 p, float* band) {
 
 namespace {
 
-// Marks the eight nodes around p in cascade k.
-void markCell(const CacheGrid& g, int k, glm::vec3 p, CacheAllocation& a) {
+// Marks the eight nodes around p in cascade k for a pixel of normal bin `bin` (normalBin),
+// `corrected` where its normal lies within kCorrectionCosine of the bin's centre: a node gets
+// a cache per bin of such pixels, listed from its CAV entry on, and one at least. (Every cache
+// of a node has the same coefficients; the others' pixels read its first.)
+void markCell(const CacheGrid& g, int k, glm::vec3 p, int bin, bool corrected, CacheAllocation& a) {
   const int n = g.nodesPerAxis();
   const glm::vec3 cell = glm::floor((p - g.origin[std::size_t(k)]) / g.cell[std::size_t(k)]);
   const glm::ivec3 base(cell);
@@ -72,16 +75,46 @@ void markCell(const CacheGrid& g, int k, glm::vec3 p, CacheAllocation& a) {
     const glm::ivec3 node =
         glm::clamp(base + glm::ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1),
                    glm::ivec3(0), glm::ivec3(g.resolution));
-    float& slot = a.cav[std::size_t(((k * n + node.z) * n + node.y) * n + node.x)];
-    if (slot >= 0.0f) continue;
-    slot = float(a.positions.size());
+    float& head = a.cav[std::size_t(((k * n + node.z) * n + node.y) * n + node.x)];
+    bool listed = false;
+    for (int c = int(head); c >= 0 && !listed; c = a.next[std::size_t(c)])
+      listed = int(a.normals[std::size_t(c)].w) == bin;
+    if (listed || (head >= 0.0f && !corrected)) continue;
+    a.next.push_back(int(head));
+    head = float(a.positions.size());
     a.positions.push_back(
         glm::vec4(g.origin[std::size_t(k)] + glm::vec3(node) * g.cell[std::size_t(k)],
                   g.cell[std::size_t(k)]));
+    a.normals.push_back(glm::vec4(binNormal(bin), float(bin)));
   }
 }
 
 }  // namespace
+
+int normalBin(glm::vec3 n) {
+  const glm::vec3 m = glm::abs(n);
+  const int axis = m.x >= m.y && m.x >= m.z ? 0 : m.y >= m.z ? 1 : 2;
+  const int face = 2 * axis + (n[axis] < 0.0f ? 1 : 0);
+  const float major = std::max(m[axis], 1e-20f);
+  const float u = n[(axis + 1) % 3] / major, v = n[(axis + 2) % 3] / major;
+  const auto cell = [](float t) {
+    return std::clamp(int(std::floor((t + 1.0f) * (0.5f * float(kNormalBinGrid)))), 0,
+                      kNormalBinGrid - 1);
+  };
+  return (face * kNormalBinGrid + cell(v)) * kNormalBinGrid + cell(u);
+}
+
+glm::vec3 binNormal(int bin) {
+  constexpr int g = kNormalBinGrid;
+  const int face = bin / (g * g), axis = face / 2;
+  const auto centre = [](int i) { return (2.0f * float(i) + 1.0f) / float(g) - 1.0f; };
+  const float u = centre(bin % g), v = centre(bin / g % g);
+  glm::vec3 d(0.0f);
+  d[axis] = face % 2 == 0 ? 1.0f : -1.0f;
+  d[(axis + 1) % 3] = u;
+  d[(axis + 2) % 3] = v;
+  return glm::normalize(d);
+}
 
 CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& position,
                                const std::vector<float>& normal) {
@@ -94,8 +127,12 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
     float band = 0.0f;
     const int k = cascadeOf(grid, p, &band);
     if (k == grid.cascades) continue;
-    markCell(grid, k, p, a);
-    if (band > 0.0f && k + 1 < grid.cascades) markCell(grid, k + 1, p, a);
+    const glm::vec3 nrm =
+        glm::normalize(glm::vec3(normal[4 * i], normal[4 * i + 1], normal[4 * i + 2]));
+    const int bin = normalBin(nrm);
+    const bool corrected = glm::dot(nrm, binNormal(bin)) > kCorrectionCosine;
+    markCell(grid, k, p, bin, corrected, a);
+    if (band > 0.0f && k + 1 < grid.cascades) markCell(grid, k + 1, p, bin, corrected, a);
   }
   return a;
 }
@@ -115,30 +152,37 @@ std::vector<std::string> basisDefines(bool shL2) {
   return shL2 ? std::vector<std::string>{"SH_L2"} : std::vector<std::string>{};
 }
 
-const char* const kShNames[] = {"uSh0", "uSh1", "uSh2", "uSh3", "uSh4", "uSh5", "uSh6"};
+// The coefficient targets (seven; SH L1 fills three) and the correction, kCacheTargets.
+const char* const kShNames[] = {"uSh0", "uSh1", "uSh2", "uSh3",
+                                "uSh4", "uSh5", "uSh6", "uCorrection"};
 const std::vector<std::string> kShOutputs = {"oSh0", "oSh1", "oSh2", "oSh3",
-                                             "oSh4", "oSh5", "oSh6"};
+                                             "oSh4", "oSh5", "oSh6", "oCorrection"};
+constexpr std::size_t kCacheTargets = 8;
 
 }  // namespace
 
 namespace {
 
 struct NodeKeyHash {
-  std::size_t operator()(const std::array<std::int64_t, 4>& k) const {
+  std::size_t operator()(const std::array<std::int64_t, 5>& k) const {
     std::size_t h = 0;
     for (std::int64_t v : k) h = h * 0x9E3779B97F4A7C15ull + std::size_t(v);
     return h;
   }
 };
 
-// Node positions are whole multiples of their cell edge (cacheGrid snaps them), so rounding
-// undoes the float arithmetic that made them.
-std::array<std::int64_t, 4> nodeKey(glm::vec4 node) {
+std::int64_t bitsOf(float f) {
   std::uint32_t bits = 0;
-  std::memcpy(&bits, &node.w, sizeof bits);
+  std::memcpy(&bits, &f, sizeof bits);
+  return std::int64_t(bits);
+}
+
+// Node positions are whole multiples of their cell edge (cacheGrid snaps them), so rounding
+// undoes the float arithmetic that made them; and the node's normal bin.
+std::array<std::int64_t, 5> nodeKey(glm::vec4 node, glm::vec4 normal) {
   const double h = double(node.w);
-  return {std::int64_t(bits), std::llround(double(node.x) / h), std::llround(double(node.y) / h),
-          std::llround(double(node.z) / h)};
+  return {bitsOf(node.w), std::llround(double(node.x) / h), std::llround(double(node.y) / h),
+          std::llround(double(node.z) / h), std::int64_t(normal.w)};
 }
 
 // Scissors the rows that hold caches `first` … `end` − 1.
@@ -151,7 +195,7 @@ void scissorCaches(int width, int height, int first, int end) {
 }  // namespace
 
 void LightCaches::allocateTargets(Targets& t, int height) {
-  const std::size_t targets = shL2_ ? 7 : 3;
+  const std::size_t targets = kCacheTargets;
   if (t.height == height && t.sh.size() == targets) return;
   t.sh.clear();
   t.sh.resize(targets);
@@ -179,7 +223,7 @@ void LightCaches::upload(const CacheGrid& grid, const CacheAllocation& a, bool s
     slots.reserve(keys_.size());
     for (std::size_t i = 0; i < keys_.size(); ++i) slots.emplace(keys_[i], int(i));
     for (std::size_t c = 0; c < count; ++c) {
-      const auto it = slots.find(nodeKey(a.positions[c]));
+      const auto it = slots.find(nodeKey(a.positions[c], a.normals[c]));
       if (it != slots.end()) before[c] = it->second;
     }
   }
@@ -202,15 +246,19 @@ void LightCaches::upload(const CacheGrid& grid, const CacheAllocation& a, bool s
   width_ = kCacheTextureWidth;
   height_ = std::max(1, (count_ + width_ - 1) / width_);
   std::vector<float> texels(std::size_t(width_) * std::size_t(height_) * 4, 0.0f),
-      previous(texels.size(), 0.0f);
+      normals(texels.size(), 0.0f), links(texels.size(), 0.0f), previous(texels.size(), 0.0f);
   keys_.assign(count, NodeKey{});
   for (std::size_t c = 0; c < count; ++c) {
     const std::size_t s = std::size_t(slot[c]);
     std::copy_n(glm::value_ptr(a.positions[c]), 4, &texels[4 * s]);
+    std::copy_n(glm::value_ptr(a.normals[c]), 4, &normals[4 * s]);
+    links[4 * s] = a.next[c] >= 0 ? float(slot[std::size_t(a.next[c])]) : -1.0f;
     previous[4 * s] = float(before[c]);
-    keys_[s] = nodeKey(a.positions[c]);
+    keys_[s] = nodeKey(a.positions[c], a.normals[c]);
   }
   allocate2d(positions_, width_, height_, texels.data());
+  allocate2d(normals_, width_, height_, normals.data());
+  allocate2d(links_, width_, height_, links.data());
   allocate2d(previous_, width_, height_, previous.data());
   if (kept_ > 0) current_ ^= 1;
   Targets& now = targets_[current_];
@@ -232,10 +280,8 @@ void LightCaches::copyKept(const Targets& from, const Targets& to) {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   bindSampler(p, "uPrevious", GL_TEXTURE_2D, previous_.id(), 0);
-  for (int i = 0; i < 7; ++i) {
-    const std::size_t t = std::min(std::size_t(i), from.sh.size() - 1);
-    bindSampler(p, kShNames[i], GL_TEXTURE_2D, from.sh[t].id(), 1 + i);
-  }
+  for (std::size_t i = 0; i < kCacheTargets; ++i)
+    bindSampler(p, kShNames[i], GL_TEXTURE_2D, from.sh[i].id(), 1 + int(i));
   glUniform1i(p.uniform("uKept"), kept_);
   scissorCaches(width_, height_, 0, kept_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -255,6 +301,7 @@ int LightCaches::gather(const GBuffer& rsm, const RsmClusterTextures& clusters, 
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
   bindSampler(p, "uCachePosition", GL_TEXTURE_2D, positions_.id(), 0);
+  bindSampler(p, "uCacheNormal", GL_TEXTURE_2D, normals_.id(), 7);
   glUniform1i(p.uniform("uFirstCache"), kept_);
   glUniform1i(p.uniform("uCacheCount"), count_);
   glUniform1f(p.uniform("uNearRadius"), nearRadius);
@@ -277,11 +324,10 @@ void LightCaches::interpolate(const GBuffer& camera) {
   bindIndirectInputs(p, camera);
   bindSampler(p, "uCav", GL_TEXTURE_3D, cav_.id(), 3);
   const std::vector<gl::Texture>& sh = targets_[current_].sh;
-  for (int i = 0; i < 7; ++i) {
-    // SH L1 reads three targets; the others' samplers still need a unit of their own.
-    const GLuint id = sh[std::min(std::size_t(i), sh.size() - 1)].id();
-    bindSampler(p, kShNames[i], GL_TEXTURE_2D, id, 4 + i);
-  }
+  for (std::size_t i = 0; i < kCacheTargets; ++i)
+    bindSampler(p, kShNames[i], GL_TEXTURE_2D, sh[i].id(), 4 + int(i));
+  bindSampler(p, "uCacheNormal", GL_TEXTURE_2D, normals_.id(), 4 + int(kCacheTargets));
+  bindSampler(p, "uCacheNext", GL_TEXTURE_2D, links_.id(), 5 + int(kCacheTargets));
   setCascadeUniforms(p, grid_);
   glUniform1i(p.uniform("uResolution"), grid_.resolution);
   glUniform3fv(p.uniform("uOrigin"), grid_.cascades, glm::value_ptr(grid_.origin[0]));

@@ -30,9 +30,12 @@ namespace manylight {
 // depends on where the camera is within a cell); its decision boundary is the cube of half
 // edge (resolution/2 − 2) cells centred on the camera itself, so it moves smoothly and its
 // cells' nodes always lie in the cascade.
+// Cells a side of every cascade.
+inline constexpr int kCacheResolution = 128;
+
 struct CacheGrid {
   int cascades = 4;
-  int resolution = 64;
+  int resolution = kCacheResolution;
   glm::vec3 centre{0.0f};
   std::vector<glm::vec3> origin;  // per cascade: the world position of node (0, 0, 0)
   std::vector<float> cell;        // per cascade: the cell edge
@@ -42,10 +45,12 @@ struct CacheGrid {
 inline constexpr int kMaxCascades = 8;
 
 // Cascades of cell edge `cell` (at the smallest) around `centre`.
-CacheGrid cacheGrid(glm::vec3 centre, float cell, int cascades = 4, int resolution = 64);
+CacheGrid cacheGrid(glm::vec3 centre, float cell, int cascades = 4,
+                    int resolution = kCacheResolution);
 // The fewest cascades (at most kMaxCascades) whose largest decision boundary around `centre`
 // holds all of `bounds`.
-int cascadesToCover(glm::vec3 centre, float cell, const Bounds& bounds, int resolution = 64);
+int cascadesToCover(glm::vec3 centre, float cell, const Bounds& bounds,
+                    int resolution = kCacheResolution);
 
 // The cascade that holds `p` (cascades when none does), and where p lies in its transition
 // band: 0 outside it, rising to 1 at the decision boundary.
@@ -55,10 +60,22 @@ int cascadeOf(const CacheGrid& grid, glm::vec3 p, float* band = nullptr);
 void setCascadeUniforms(const gl::Program& p, const CacheGrid& grid);
 
 struct CacheAllocation {
-  // Per cascade, (resolution + 1)³ nodes, x fastest then y then z: a cache index, or −1.
+  // Per cascade, (resolution + 1)³ nodes, x fastest then y then z: the node's first cache, or
+  // −1.
   std::vector<float> cav;
   std::vector<glm::vec4> positions;  // per cache, its node's world position and cell edge
+  // per cache, the normal its correction is for (binNormal) and that bin: a node has a cache
+  // per bin of the pixels marking it, so a pixel's caches do not depend on the view.
+  std::vector<glm::vec4> normals;
+  std::vector<int> next;  // per cache, the next cache of its node, or −1
 };
+
+// Normals in 6 · kNormalBinGrid² bins: the cube face of the normal's largest component (+x,
+// −x, +y, −y, +z, −z), then a kNormalBinGrid² grid over the face (glsl/cache_interpolate.frag
+// bins as this does); binNormal is a bin's central direction, the face's axis for the middle
+// cell.
+int normalBin(glm::vec3 n);
+glm::vec3 binNormal(int bin);
 
 // The caches the covered pixels of a G-buffer read back as RGBA floats need (normal.w 0 off
 // the geometry), in the order the pixels first mark them.
@@ -72,9 +89,10 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
 class LightCaches {
  public:
   LightCaches() = default;
-  // Uploads `a`: textures grow to hold its caches. With `keep`, the caches at nodes the last
-  // upload also had keep their coefficients (the maps and the basis are the caller's to
-  // check); the others, or all without `keep`, start at 0. Throws gl::GlError.
+  // Uploads `a`: textures grow to hold its caches. With `keep` (the caller's word that the
+  // maps are those the last upload's caches gathered) and the same basis, the caches at
+  // nodes and bins the last upload also had keep their coefficients; the others start at 0.
+  // Throws gl::GlError.
   void upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2, bool keep);
   int count() const { return count_; }
   int kept() const { return kept_; }  // caches that kept their coefficients at the last upload
@@ -87,11 +105,11 @@ class LightCaches {
   void interpolate(const GBuffer& camera);
 
  private:
-  // A cache's node in world units of its cascade's cell: (cell edge, and the node's position
-  // over it), the same in every frame whose cascades have the same cells.
-  using NodeKey = std::array<std::int64_t, 4>;
+  // A cache's node in world units of its cascade's cell (cell edge, and the node's position
+  // over it), the same in every frame whose cascades have the same cells, and its normal bin.
+  using NodeKey = std::array<std::int64_t, 5>;
   struct Targets {
-    std::vector<gl::Texture> sh;  // 7 (SH L2) or 3 (SH L1) coefficient targets
+    std::vector<gl::Texture> sh;  // 7 coefficient targets (SH L1 fills 3), the correction
     gl::Framebuffer framebuffer;
     int height = 0;
   };
@@ -100,8 +118,9 @@ class LightCaches {
   CacheGrid grid_;
   bool shL2_ = false;
   int count_ = 0, kept_ = 0, width_ = 0, height_ = 0;
-  std::vector<NodeKey> keys_;               // per cache, its node
-  gl::Texture cav_, positions_, previous_;  // previous_: per kept cache, its slot the frame before
+  std::vector<NodeKey> keys_;  // per cache, its node
+  // previous_: per kept cache, its slot the frame before
+  gl::Texture cav_, positions_, normals_, links_, previous_;  // links_: CacheAllocation::next
   Targets targets_[2];
   int current_ = 0;  // targets_[current_] holds this frame's coefficients
 };

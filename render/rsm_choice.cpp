@@ -51,7 +51,8 @@ RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<do
     const bool candidate =
         i >= 0 && std::size_t(i) < lights.size() && lights[std::size_t(i)].type != LightType::Point;
     if (candidate && choice.lights.size() < k && flux[std::size_t(i)] > 0.0 &&
-        flux[std::size_t(i)] >= kRsmChoiceKeep * weakest)
+        flux[std::size_t(i)] >= kRsmChoiceKeep * weakest &&
+        std::find(choice.lights.begin(), choice.lights.end(), i) == choice.lights.end())
       choice.lights.push_back(i);
   }
   for (std::size_t j = 0; j < k && choice.lights.size() < k; ++j) {

@@ -1,6 +1,7 @@
 #include "render/rsm_clusters.h"
 
 #include <algorithm>
+#include <cassert>
 
 namespace manylight {
 
@@ -12,6 +13,7 @@ double weightOf(const float* f) { return double(f[0]) + double(f[1]) + double(f[
 
 RsmClusters clusterRsm(const std::vector<float>& position, const std::vector<float>& normal,
                        const std::vector<float>& flux, int size) {
+  assert(size % kRsmClusterEdge == 0 && "--rsm-size takes powers of two from 16");
   RsmClusters c;
   c.size = size / kRsmClusterEdge;
   const std::size_t n = std::size_t(c.size) * std::size_t(c.size);

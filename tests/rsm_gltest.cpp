@@ -1,6 +1,10 @@
-// Parts of `--indirect` that need no context: the map choice's rule and the map clusters.
+// Parts of `--indirect` that need no context (built with the GL tests, since they link
+// render/): the map choice's rule, the map clusters and the caches' normal bins.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "render/light_caches.h"
 #include "render/rsm_choice.h"
 #include "render/rsm_clusters.h"
 
@@ -20,6 +24,7 @@ TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {1, 0}).lights, (std::vector<int>{1, 0}));
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {5, 4}).lights, (std::vector<int>{0, 1}));
   EXPECT_DOUBLE_EQ(chooseRsmLights(lights, flux, 2, {3, 4}).fluxShare, 15.0 / 78.0);
+  EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 3}).lights, (std::vector<int>{3, 0}));
 }
 
 // An 8 × 8 map: the lower-left block flat on z = 0 with equal flux, the lower-right one
@@ -56,6 +61,28 @@ TEST(Indirect, ClustersHoldTheirTexels) {
   EXPECT_EQ(c.flux[2], glm::vec4(0.0f));
   EXPECT_EQ(c.centre[3], glm::vec4(6.0f, 7.0f, 0.0f, 0.0f));
   EXPECT_EQ(c.flux[3], glm::vec4(1.0f, 1.0f, 1.0f, 0.5f));
+}
+
+// Every bin's centre falls in that bin, the axes are centres, and a normal lies within the
+// widest bin's reach of its bin's centre.
+TEST(Indirect, NormalBinsHoldTheirCentres) {
+  constexpr int bins = 6 * kNormalBinGrid * kNormalBinGrid;
+  for (int b = 0; b < bins; ++b) EXPECT_EQ(normalBin(binNormal(b)), b) << b;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (float sign : {1.0f, -1.0f}) {
+      glm::vec3 n(0.0f);
+      n[axis] = sign;
+      EXPECT_EQ(binNormal(normalBin(n)), n);
+    }
+  }
+  float least = 1.0f;
+  for (int i = 0; i < 2000; ++i) {
+    const float z = 1.0f - 2.0f * (float(i) + 0.5f) / 2000.0f, phi = 2.39996323f * float(i);
+    const float r = std::sqrt(1.0f - z * z);
+    const glm::vec3 n(r * std::cos(phi), r * std::sin(phi), z);
+    least = std::min(least, glm::dot(n, binNormal(normalBin(n))));
+  }
+  EXPECT_GT(least, 0.8f);
 }
 
 }  // namespace
