@@ -1,17 +1,18 @@
 #pragma once
 // `--indirect caches`: the light caches of the second design document. Caches sit at the
 // nodes of nested world-space grids around the camera, the cascades of a Cache Address
-// Volume (CAV), which stores only each node's cache index; each cache holds the indirect
+// Volume (CAV), which stores only each node's first cache; each cache holds the indirect
 // light arriving at its position from the reflective shadow maps (render/rsm.h) in a
-// spherical harmonics basis (glsl/sh_basis.glsl); each pixel interpolates its irradiance
-// from the caches at its cell's eight nodes (glsl/cache_interpolate.frag).
+// spherical harmonics basis (glsl/sh_basis.glsl), and the exact irradiance for its normal
+// bin's centre as a correction to it; each pixel interpolates its irradiance from the caches
+// at its cell's eight nodes (glsl/cache_interpolate.frag).
 //
 // GL 3.3 has no compute shaders or image atomics, so caches are allocated on the CPU, from
 // the G-buffer's positions read back: each covered pixel marks the eight nodes of its cell
-// in the smallest cascade whose decision boundary holds it, and, in the band one cell wide
-// inside that boundary (kBandCells wide), those of the next cascade too. The CAV (4 × 65³ nodes, 4
-// bytes each) is uploaded as one 3D texture; cache positions and coefficients are texels of 2D
-// textures sized from the frame's cache count.
+// in the smallest cascade whose decision boundary holds it, and, in the band kBandCells
+// cells wide inside that boundary, those of the next cascade too. The CAV ((resolution + 1)³
+// nodes a cascade, 4 bytes each) is uploaded as one 3D texture; the caches' positions,
+// normals, links and coefficients are texels of 2D textures sized from the frame's count.
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
