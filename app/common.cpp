@@ -239,6 +239,7 @@ nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectSta
           {"gather_ms", s.gatherMs},
           {"caches", s.caches},
           {"caches_kept", s.cachesKept},
+          {"caches_refused", s.cachesRefused},
           {"cascades", s.cascades},
           {"cache_cell", s.cacheCell},
           {"allocate_ms", s.allocateMs},

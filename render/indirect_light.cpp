@@ -159,7 +159,9 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     if (!caches_) caches_ = std::make_unique<LightCaches>();
     // Kept only from caches gathered from these very maps (an `exact` frame between may have
     // made others).
-    caches_->upload(grid, allocateCaches(grid, position, normal), settings.shL2,
+    const CacheAllocation allocation = allocateCaches(grid, position, normal);
+    stats.cachesRefused = allocation.refused;
+    caches_->upload(grid, allocation, settings.shL2,
                     stats.mapsKept && cachesGeneration_ == mapGeneration_);
     cachesGeneration_ = mapGeneration_;
     stats.caches = caches_->count();

@@ -51,6 +51,7 @@ struct IndirectStats {
   // --indirect caches:
   int caches = 0;      // allocated this frame
   int cachesKept = 0;  // of them, those that kept the last frame's light (LightCaches::upload)
+  long long cachesRefused = 0;  // CacheAllocation::refused
   int cascades = 0;
   float cacheCell = 0.0f;      // the smallest cascade's cell edge
   double allocateMs = 0.0;     // allocated on the CPU and uploaded

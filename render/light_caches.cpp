@@ -80,6 +80,10 @@ void markCell(const CacheGrid& g, int k, glm::vec3 p, int bin, bool corrected, C
     for (int c = int(head); c >= 0 && !listed; c = a.next[std::size_t(c)])
       listed = int(a.normals[std::size_t(c)].w) == bin;
     if (listed || (head >= 0.0f && !corrected)) continue;
+    if (a.positions.size() >= kMaxCaches) {
+      ++a.refused;
+      continue;
+    }
     a.next.push_back(int(head));
     head = float(a.positions.size());
     a.positions.push_back(

@@ -69,7 +69,12 @@ struct CacheAllocation {
   // per bin of the pixels marking it, so a pixel's caches do not depend on the view.
   std::vector<glm::vec4> normals;
   std::vector<int> next;  // per cache, the next cache of its node, or −1
+  long long refused = 0;  // caches not made: kMaxCaches were
 };
+// Caches a frame holds at most (the per-process budget: their textures take at most 168 MB).
+// Past it, no pixel makes another: the pixels of a node without caches go without its light
+// (the others of their cell are blended without it), or without their bin's correction.
+inline constexpr std::size_t kMaxCaches = std::size_t(1) << 19;
 
 // Normals in 6 · kNormalBinGrid² bins: the cube face of the normal's largest component (+x,
 // −x, +y, −y, +z, −z), then a kNormalBinGrid² grid over the face (glsl/cache_interpolate.frag

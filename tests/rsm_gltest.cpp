@@ -85,5 +85,34 @@ TEST(Indirect, NormalBinsHoldTheirCentres) {
   EXPECT_GT(least, 0.8f);
 }
 
+// Pixels spread over more nodes than the budget: the allocation stops at kMaxCaches and counts
+// what it refused.
+TEST(Indirect, CachesStopAtTheBudget) {
+  const CacheGrid grid = cacheGrid(glm::vec3(0.0f), 1.0f, 1);
+  const int side = 100;  // 100 × 100 pixels on each of 10 planes, one a cell apart
+  std::vector<float> position, normal;
+  for (int z = 0; z < 10; ++z)
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) {
+        position.insert(position.end(), {float(x - 50) * 0.6f + 0.1f, float(y - 50) * 0.6f + 0.1f,
+                                         float(z - 5) * 6.0f + 0.1f, 0.0f});
+        normal.insert(normal.end(), {0.0f, 0.0f, 1.0f, 1.0f});
+      }
+  const CacheAllocation few = allocateCaches(grid, position, normal);
+  EXPECT_EQ(few.refused, 0);
+  EXPECT_LT(few.positions.size(), kMaxCaches);
+  // Each node of a pixel with the normal of every bin in turn: 54 caches a node.
+  std::vector<float> turned = normal;
+  for (std::size_t i = 0; i < turned.size() / 4; ++i) {
+    const glm::vec3 n = binNormal(int(i % 54));
+    turned[4 * i] = n.x;
+    turned[4 * i + 1] = n.y;
+    turned[4 * i + 2] = n.z;
+  }
+  const CacheAllocation many = allocateCaches(grid, position, turned);
+  EXPECT_EQ(many.positions.size(), kMaxCaches);
+  EXPECT_GT(many.refused, 0);
+}
+
 }  // namespace
 }  // namespace manylight::testing
