@@ -10,9 +10,10 @@ inline constexpr float kBandCells = 2.0f;
 // whose caches receive its light, so the far part is smooth between caches.
 inline constexpr float kNearCells = 2.0f;
 
-// The near field's texels lie in one plane when within this × the near grid's cell of it; a
-// pixel as close to the plane, or behind it, skips them (NearField::cellPlanes), and the light it
-// misses is of this order relative to theirs.
+// The near field's texels lie in one plane when within this × the near grid's cell of it
+// (and their normals within a cosine of 0.9999 of one another); a pixel as close to the plane,
+// or behind it, skips them (NearField::cellPlanes), missing the little light such a plane's
+// texels would still send it.
 inline constexpr float kPlaneTolerance = 1e-3f;
 
 // A cache holds, beside its coefficients, the exact far irradiance for one normal (its normal

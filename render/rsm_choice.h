@@ -21,8 +21,9 @@ struct RsmChoice {
   double fluxShare = 1.0;
 };
 
-// Pixels the choice samples at most, on a regular grid over the image: 256, or fewer (down
-// to 32) where lights × samples would pass kRsmChoiceEvaluations.
+// Pixels the choice wants, on a regular grid over the covered pixels: 256, or fewer (down to
+// 32) where lights × samples would pass kRsmChoiceEvaluations. The grid's step is rounded
+// down, so up to twice as many are taken.
 inline constexpr int kRsmChoiceSamples = 256;
 inline constexpr int kRsmChoiceMinSamples = 32;
 inline constexpr double kRsmChoiceEvaluations = 1 << 22;
