@@ -21,10 +21,6 @@ double msSince(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-void bindTarget(const gl::Program& p, const char* name, const gl::Texture& t, int unit) {
-  bindSampler(p, name, GL_TEXTURE_2D, t.id(), unit);
-}
-
 // Writes the map's flux over its radiance target (glsl/rsm_flux.frag).
 void renderFlux(const GBuffer& rsm, const Light& light, const RsmView& view) {
   const gl::Program& p = gl::cachedProgram("fullscreen.vert", "rsm_flux.frag", {}, {"oRadiance"});
@@ -33,9 +29,9 @@ void renderFlux(const GBuffer& rsm, const Light& light, const RsmView& view) {
   glViewport(0, 0, rsm.width(), rsm.height());
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  bindTarget(p, "uPosition", rsm.target(GBuffer::kPosition), 0);
-  bindTarget(p, "uNormal", rsm.target(GBuffer::kNormal), 1);
-  bindTarget(p, "uAlbedo", rsm.target(GBuffer::kAlbedo), 2);
+  bindSampler(p, "uPosition", GL_TEXTURE_2D, rsm.target(GBuffer::kPosition).id(), 0);
+  bindSampler(p, "uNormal", GL_TEXTURE_2D, rsm.target(GBuffer::kNormal).id(), 1);
+  bindSampler(p, "uAlbedo", GL_TEXTURE_2D, rsm.target(GBuffer::kAlbedo).id(), 2);
   // The light texture's sampler is not read, but may not share a unit with the others.
   glUniform1i(p.uniform("uLights"), 3);
   const std::vector<float> t = packLightTexels({light}, {0});

@@ -5,6 +5,7 @@
 // quadrature; the GPU sums the reflective shadow map's texels instead. Their difference is the
 // map's own discretisation error, stated below.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,16 +28,31 @@ namespace {
 constexpr int kWidth = 96, kHeight = 72;
 constexpr double kPi = shading::kPi;
 
+// The Cornell-like room with its spot and `extraLights` more (generators/scene_builder.h),
+// written as a GLB and loaded as users load it.
+Scene cornellWith(int extraLights) {
+  context();
+  // Per process: ctest runs the tests side by side, each in its own.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("manylight_indirect_" + std::to_string(extraLights) + "_" +
+                             std::to_string(::getpid()) + ".glb"))
+                               .string();
+  CornellOptions options;
+  options.extraLights = extraLights;
+  writeCornellScene(path, options);
+  Scene s = loadGltf(path);
+  std::filesystem::remove(path);
+  return s;
+}
+
 const Scene& cornell() {
-  static const Scene scene = [] {
-    context();
-    const std::string path =
-        (std::filesystem::temp_directory_path() / "manylight_indirect_cornell.glb").string();
-    writeCornellScene(path, {});
-    Scene s = loadGltf(path);
-    std::filesystem::remove(path);
-    return s;
-  }();
+  static const Scene scene = cornellWith(0);
+  return scene;
+}
+
+// The room with 4,096 lights: its spot sends most, but not all, of the flux.
+const Scene& cornell4096() {
+  static const Scene scene = cornellWith(4095);
   return scene;
 }
 
@@ -209,14 +225,7 @@ TEST(Indirect, ColourBleedsFromTheWallsOntoTheFloor) {
 // With many lights, maps go to the spot and directional lights sending the most flux into
 // the view, and --stats says what share of the flux they cover.
 TEST(Indirect, MapsGoToTheLightsWithTheMostFlux) {
-  context();
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "manylight_indirect_many.glb").string();
-  CornellOptions options;
-  options.extraLights = 4095;
-  writeCornellScene(path, options);
-  const Scene scene = loadGltf(path);
-  std::filesystem::remove(path);
+  const Scene& scene = cornell4096();
   int candidates = 0;
   for (const Light& l : scene.lights) candidates += l.type != LightType::Point;
   const Frame f = render(scene, Indirect::Exact, 64);
@@ -236,14 +245,7 @@ TEST(Indirect, MapsGoToTheLightsWithTheMostFlux) {
 // double-precision sum of the shading model's irradiance, each light's flux is within 10⁻⁴
 // of the largest, and the same lights are chosen.
 TEST(Indirect, TheChoiceWeighsTheLightsAsTheShadingModelDoes) {
-  context();
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "manylight_indirect_flux.glb").string();
-  CornellOptions options;
-  options.extraLights = 4095;
-  writeCornellScene(path, options);
-  const Scene scene = loadGltf(path);
-  std::filesystem::remove(path);
+  const Scene& scene = cornell4096();
   const Frame f = render(scene, Indirect::None, 64);
   const RsmSamples samples = sampleRsmChoice(f.position, f.normal, scene.lights.size());
   ASSERT_GT(samples.position.size(), 200u);
@@ -324,14 +326,7 @@ TEST(Indirect, CachesMatchExact) {
   EXPECT_LT(l2.p99, 0.02);
   EXPECT_LT(l1.mean, 0.005);
   EXPECT_LT(l1.p99, 0.02);
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "manylight_indirect_65536.glb").string();
-  CornellOptions options;
-  options.extraLights = 65535;
-  writeCornellScene(path, options);
-  const Scene many = loadGltf(path);
-  std::filesystem::remove(path);
-  const CacheError m = cacheError(many, true, "65,536 lights");
+  const CacheError m = cacheError(cornellWith(65535), true, "65,536 lights");
   EXPECT_LT(m.mean, 0.005);
   EXPECT_LT(m.p99, 0.02);
 }
