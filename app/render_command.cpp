@@ -204,6 +204,10 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   // the compiled code; one still reading after a 10 ms wait is a scene that will render.
   if (next.valid() && next.wait_for(std::chrono::milliseconds(10)) != std::future_status::ready) {
     warmUpGeometryPass(request.aov);
+    // A scene still reading now (a large one) would link the image module after it: this
+    // thread, otherwise idle, links it meanwhile (the loader's call then waits for it, if
+    // needed, and returns at once).
+    if (next.wait_for(std::chrono::seconds(0)) != std::future_status::ready) preloadImageIo();
   }
   if (!batch) {
     nlohmann::json stats =

@@ -365,6 +365,12 @@ void readLight(od::value v, std::size_t i, BulkArrays& out) {
   out.lights.push_back(l);
 }
 
+bool isArray(od::value v) {
+  od::json_type type;
+  check(v.type().get(type));
+  return type == od::json_type::array;
+}
+
 // Where the array just read ends: one past its ']', found back from the next token.
 std::size_t arrayEnd(od::document& doc, std::string_view json) {
   const char* next = nullptr;
@@ -418,6 +424,53 @@ void readLightsExtension(od::document& doc, od::value v, std::string_view json, 
   }
 }
 
+// A root of a scene, as tinygltf's integer arrays take one: a JSON integer, cast to int.
+// After the first value that is not one, tinygltf keeps none; `stopped` says so.
+void readSceneNode(od::value x, std::vector<std::int32_t>& roots, bool& stopped) {
+  if (!stopped) {
+    std::int64_t i = 0;
+    std::uint64_t u = 0;
+    const simdjson::error_code e = x.get_int64().get(i);
+    if (e == simdjson::SUCCESS) {
+      roots.push_back(static_cast<std::int32_t>(i));
+      return;
+    }
+    if (e == simdjson::NUMBER_OUT_OF_RANGE && x.get_uint64().get(u) == simdjson::SUCCESS) {
+      roots.push_back(static_cast<std::int32_t>(u));
+      return;
+    }
+    stopped = true;
+  }
+  validate(x);
+}
+
+// The scene `v`: its `nodes` array read into `roots` (and emptied in the rest), the rest of
+// it left to tinygltf, which also refuses a scene that is not an object.
+void readScene(od::document& doc, od::value v, std::string_view json,
+               std::vector<std::int32_t>& roots, std::vector<Span>& spans) {
+  od::json_type type;
+  check(v.type().get(type));
+  if (type != od::json_type::object) return validate(v);
+  od::object o;
+  check(v.get_object().get(o));
+  for (auto field : o) {
+    const std::string_view key = keyOf(field);
+    od::value value;
+    check(field.value().get(value));
+    check(value.type().get(type));
+    if (key != "nodes" || type != od::json_type::array) {
+      if (key == "nodes") roots.clear();
+      validate(value);
+      continue;
+    }
+    roots.clear();
+    bool stopped = false;
+    spans.push_back(readArray(
+        doc, value, json, "scene nodes", [&](std::size_t n) { roots.reserve(n); },
+        [&](od::value x, std::size_t) { readSceneNode(x, roots, stopped); }));
+  }
+}
+
 void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
                   std::vector<Span>& spans) {
   od::object top;
@@ -433,6 +486,16 @@ void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
       spans.push_back(readArray(
           doc, value, json, "nodes", [&](std::size_t n) { out.bulk.nodes.reserve(n); },
           [&](od::value x, std::size_t i) { readNode(x, i, out.bulk); }));
+    } else if (key == "scenes" && isArray(value)) {
+      out.bulk.sceneNodes.clear();
+      od::array scenes;
+      check(value.get_array().get(scenes));
+      for (auto element : scenes) {
+        od::value scene;
+        check(element.get(scene));
+        out.bulk.sceneNodes.emplace_back();
+        readScene(doc, scene, json, out.bulk.sceneNodes.back(), spans);
+      }
     } else if (key == "extensions") {
       od::object extensions;
       if (value.get_object().get(extensions) != simdjson::SUCCESS) continue;

@@ -1,8 +1,9 @@
 #pragma once
-// The two arrays of a glTF document that grow with its light count, `nodes` and
-// KHR_lights_punctual's `lights`, read with simdjson's on-demand parser straight into compact
-// records (no document tree), and the rest of the JSON, with those two arrays emptied, for
-// tinygltf. The loader takes nodes and lights only from here, whatever the file's size.
+// The arrays of a glTF document that grow with its light count, `nodes`, KHR_lights_punctual's
+// `lights` and each scene's `nodes`, read with simdjson's on-demand parser straight into
+// compact records (no document tree), and the rest of the JSON, with those arrays emptied,
+// for tinygltf. The loader takes nodes, lights and scene roots only from here, whatever the
+// file's size.
 // Internal to scene/.
 #include <array>
 #include <cstdint>
@@ -44,6 +45,9 @@ struct BulkArrays {
   std::vector<std::array<double, 16>> matrices;  // column-major, as in the file
   std::vector<LightRecord> lights;
   std::map<std::size_t, std::string> otherTypes;  // the type of each PunctualType::Other light
+  // Per element of `scenes`, its root nodes as tinygltf reads them: JSON integers up to the
+  // first that is not one (a scene that is no object, or has no array there: none).
+  std::vector<std::vector<std::int32_t>> sceneNodes;
 
   // The children of `node`.
   const std::int32_t* childrenBegin(const NodeRecord& n) const {
@@ -59,7 +63,7 @@ struct SplitJson {
   bool parsed = false;      // false: the text is not a JSON object simdjson could read
   std::string syntaxError;  // simdjson's reason when not parsed
   BulkArrays bulk;
-  std::string rest;  // the JSON with `nodes` and the lights emptied; "" when not parsed
+  std::string rest;  // the JSON with those arrays emptied; "" when not parsed
 };
 
 // Reads `json` (whose buffer holds at least `capacity` ≥ json.size() + 64 readable bytes

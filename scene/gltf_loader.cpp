@@ -93,7 +93,9 @@ class SceneWalker {
       if (std::size_t(s) >= model_.scenes.size()) {
         throw SceneError("scene " + std::to_string(s) + " does not exist");
       }
-      roots = model_.scenes[s].nodes;
+      // splitJson read the roots (and emptied them in what tinygltf read).
+      roots.assign(bulk_.sceneNodes.at(std::size_t(s)).begin(),
+                   bulk_.sceneNodes.at(std::size_t(s)).end());
     } else {
       // No scenes: show every node that is nobody's child.
       std::vector<bool> isChild(bulk_.nodes.size(), false);

@@ -65,4 +65,11 @@ const ImageIoApi& imageIo() {
   return *loaded.api;
 }
 
+void preloadImageIo() {
+  try {
+    imageIo();
+  } catch (const Error&) {
+  }
+}
+
 }  // namespace manylight

@@ -9,4 +9,8 @@ namespace manylight {
 // cannot be loaded.
 const ImageIoApi& imageIo();
 
+// Links the module now, on this thread, so that a later imageIo() finds it linked; a module
+// that will not load is left for that call to report.
+void preloadImageIo();
+
 }  // namespace manylight

@@ -82,6 +82,23 @@ TEST(GltfBulk, ReadsTransformsIndicesAndLightValues) {
   EXPECT_EQ(d.range, 4.0);
 }
 
+// Scene roots as tinygltf read them: integers (wrapped to int) up to the first that is not
+// one; a scene without a `nodes` array has none, and one that is not an object is tinygltf's.
+TEST(GltfBulk, SceneRootsAreReadAsTinygltfReadThem) {
+  const gltf::SplitJson s = split(R"({"scenes": [{"nodes": [2, 0, 4294967297, 1.5, 3],
+    "name": "a"}, {"nodes": {"x": 1}}, {}, 7, {"nodes": [5], "nodes": [6, -1]}]})");
+  ASSERT_TRUE(s.parsed);
+  EXPECT_EQ(s.rest, R"({"scenes": [{"nodes": [],
+    "name": "a"}, {"nodes": {"x": 1}}, {}, 7, {"nodes": [], "nodes": []}]})");
+  ASSERT_EQ(s.bulk.sceneNodes.size(), 5u);
+  EXPECT_EQ(s.bulk.sceneNodes[0], (std::vector<std::int32_t>{2, 0, 1}));
+  EXPECT_TRUE(s.bulk.sceneNodes[1].empty());
+  EXPECT_TRUE(s.bulk.sceneNodes[2].empty());
+  EXPECT_TRUE(s.bulk.sceneNodes[3].empty());
+  EXPECT_EQ(s.bulk.sceneNodes[4], (std::vector<std::int32_t>{6, -1}));
+  EXPECT_FALSE(split(R"({"scenes": [{"nodes": [1, 2.]}]})").parsed);
+}
+
 TEST(GltfBulk, TextThatIsNotJsonIsLeftToTinygltf) {
   EXPECT_FALSE(split("{ this is not json").parsed);
   EXPECT_FALSE(split(R"({"nodes": [{"extras": {"a": 56.0f}}]})").parsed);
