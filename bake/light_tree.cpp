@@ -111,31 +111,37 @@ LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double 
   return n;
 }
 
-struct Builder {
-  std::vector<Item> items;
-  std::vector<LightTreeNode>* nodes;
-  Split split;
+// A range of items [first, last) of a builder, split at `mid` by the median along an axis:
+// 0–2 position, 3–5 the spot axis scaled by the scene diagonal.
+struct Splitter {
   bool oriented;  // spot lights: directions count in the metric
   double c;       // scene diagonal
-  std::uint64_t seed;
 
-  // Metric of the items in [lo, hi) as one cluster. The cone is the one around the mean
-  // direction (not the smallest, which would need trigonometry per light): good enough to
-  // rank candidate splits.
-  double metricOf(int lo, int hi) const {
-    glm::vec3 mn = items[lo].point, mx = mn, sum(0.0f), axisSum(0.0f);
-    for (int i = lo; i < hi; ++i) {
-      const Item& it = items[i];
-      mn = glm::min(mn, it.point);
-      mx = glm::max(mx, it.point);
-      sum += it.intensity;
-      axisSum += it.axis;
+  float key(const Item& it, int axis) const {
+    return axis < 3 ? it.point[axis] : float(c) * it.axis[axis - 3];
+  }
+
+  void partition(Item* first, Item* mid, Item* last, int axis) const {
+    std::nth_element(first, mid, last,
+                     [&](const Item& a, const Item& b) { return key(a, axis) < key(b, axis); });
+  }
+
+  // Metric of the items as one cluster. The cone is the one around the mean direction (not
+  // the smallest, which would need trigonometry per light): good enough to rank splits.
+  double metricOf(const Item* first, const Item* last) const {
+    glm::vec3 mn = first->point, mx = mn, sum(0.0f), axisSum(0.0f);
+    for (const Item* it = first; it != last; ++it) {
+      mn = glm::min(mn, it->point);
+      mx = glm::max(mx, it->point);
+      sum += it->intensity;
+      axisSum += it->axis;
     }
     double cone = 0.0;
     if (oriented && glm::dot(axisSum, axisSum) > 0.0f) {
       const glm::vec3 mean = glm::normalize(axisSum);
       float cosSpread = 1.0f;
-      for (int i = lo; i < hi; ++i) cosSpread = std::min(cosSpread, glm::dot(mean, items[i].axis));
+      for (const Item* it = first; it != last; ++it)
+        cosSpread = std::min(cosSpread, glm::dot(mean, it->axis));
       cone = c * (1.0 - double(cosSpread));
     } else if (oriented) {
       cone = 2.0 * c;
@@ -144,33 +150,59 @@ struct Builder {
     return scalar(sum) * (glm::dot(d, d) + cone * cone);
   }
 
-  float key(const Item& it, int axis) const {
-    return axis < 3 ? it.point[axis] : float(c) * it.axis[axis - 3];
+  // The axis whose median split has the smallest summed metric; leaves the range split
+  // along it.
+  int bestAxis(Item* first, Item* mid, Item* last) const {
+    int best = 0;
+    double bestCost = std::numeric_limits<double>::infinity();
+    const int axes = oriented ? 6 : 3;
+    for (int axis = 0; axis < axes; ++axis) {
+      partition(first, mid, last, axis);
+      const double cost = metricOf(first, mid) + metricOf(mid, last);
+      if (cost < bestCost) bestCost = cost, best = axis;
+    }
+    if (best != axes - 1) partition(first, mid, last, best);
+    return best;
   }
+};
 
-  void partition(int lo, int mid, int hi, int axis) {
-    std::nth_element(items.begin() + lo, items.begin() + mid, items.begin() + hi,
-                     [&](const Item& a, const Item& b) { return key(a, axis) < key(b, axis); });
-  }
+// Ranges of more items than this choose their split axis on an evenly strided sample of
+// kSplitSample of them, then split once along it: each axis tried over the whole range
+// costs a selection and two metric passes, which at 2^20 lights were most of the build.
+// A split whose cost is close between axes is the only one a sample can choose otherwise,
+// and there the choice matters least (mean cut: docs/performance.md).
+constexpr int kSampledSplitAbove = 1024;
+constexpr int kSplitSample = 256;
+
+struct Builder {
+  std::vector<Item> items;
+  std::vector<LightTreeNode>* nodes;
+  Split split;
+  Splitter axes;
+  std::uint64_t seed;
 
   void chooseAndPartition(int lo, int mid, int hi) {
+    Item* const first = items.data() + lo;
     if (split == Split::LongestAxis) {
       glm::vec3 mn = items[lo].point, mx = mn;
       for (int i = lo + 1; i < hi; ++i)
         mn = glm::min(mn, items[i].point), mx = glm::max(mx, items[i].point);
       const glm::vec3 e = mx - mn;
-      partition(lo, mid, hi, e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2);
+      axes.partition(first, first + (mid - lo), first + (hi - lo),
+                     e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2);
       return;
     }
-    int best = 0;
-    double bestCost = std::numeric_limits<double>::infinity();
-    const int axes = oriented ? 6 : 3;
-    for (int axis = 0; axis < axes; ++axis) {
-      partition(lo, mid, hi, axis);
-      const double cost = metricOf(lo, mid) + metricOf(mid, hi);
-      if (cost < bestCost) bestCost = cost, best = axis;
+    const int n = hi - lo;
+    if (n <= kSampledSplitAbove) {
+      axes.bestAxis(first, first + (mid - lo), first + (hi - lo));
+      return;
     }
-    if (best != axes - 1) partition(lo, mid, hi, best);
+    std::vector<Item> sample(kSplitSample);
+    for (int k = 0; k < kSplitSample; ++k)
+      sample[std::size_t(k)] = first[std::int64_t(k) * n / kSplitSample];
+    const int best = axes.bestAxis(sample.data(), sample.data() + kSplitSample / 2,
+                                   sample.data() + kSplitSample);
+    axes.partition(first, first + (mid - lo), first + (hi - lo), best);
   }
 
   // Fills node `index` (with `capacity` leaves below it) from items [lo, hi).
@@ -240,8 +272,8 @@ std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights,
     tree.nodes.assign(std::size_t(2) * tree.leafCount - 1, LightTreeNode{});
     b.nodes = &tree.nodes;
     b.split = options.split;
-    b.oriented = tree.type == LightType::Spot && options.coneWeight > 0.0;
-    b.c = c * options.coneWeight;
+    b.axes.oriented = tree.type == LightType::Spot && options.coneWeight > 0.0;
+    b.axes.c = c * options.coneWeight;
     b.seed = options.seed ^ std::uint64_t(t);
     b.build(0, tree.leafCount, 0, count, 0);
     trees.push_back(std::move(tree));

@@ -5,6 +5,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "bake/light_tree_layout.h"
+#include "bake/parallel.h"
 
 namespace manylight {
 namespace {
@@ -26,6 +27,33 @@ std::vector<glm::vec3> decodedIntensities(const std::vector<LightTree>& trees) {
   return colours;
 }
 
+// Fewer nodes than this a thread are packed on one.
+constexpr std::size_t kNodesPerThread = 65536;
+
+// Node i of `tree` (type index t) into its words at `w`.
+void packNode(const LightTree& tree, int i, int t, const NodeColourCoder& colour,
+              std::uint32_t* w) {
+  const LightTreeNode& n = tree.nodes[std::size_t(i)];
+  w[0] = wordOf(n.boxMin.x), w[1] = wordOf(n.boxMin.y), w[2] = wordOf(n.boxMin.z);
+  w[3] = std::uint32_t(n.representative);
+  if (i < tree.firstLeaf()) {
+    w[4] = wordOf(n.boxMax.x), w[5] = wordOf(n.boxMax.y), w[6] = wordOf(n.boxMax.z);
+    w[8] = colour.encode(n.intensity);
+  } else {  // a leaf's box is its light's position: the words hold its exact intensity
+    w[4] = wordOf(n.intensity.r), w[5] = wordOf(n.intensity.g), w[6] = wordOf(n.intensity.b);
+  }
+  w[7] = wordOf(n.invRange2);
+  if (t == 1) w[9] = wordOf(n.invRange2Max);
+  if (t == 2) {
+    // 1e-4 rad of margin covers the float rounding of the cone merges.
+    const double theta =
+        std::min(double(n.spread) + double(n.outerAngle) + 1e-4, glm::pi<double>());
+    w[9] = wordOf(float(std::cos(theta)));
+    w[10] = wordOf(n.axis.x), w[11] = wordOf(n.axis.y), w[12] = wordOf(n.axis.z);
+    w[13] = wordOf(float(std::sin(theta)));
+  }
+}
+
 }  // namespace
 
 PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding coding) {
@@ -44,29 +72,15 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
     const int t = typeIndex(tree.type);
     packed.base[t] = int(next);
     packed.leaves[t] = tree.leafCount;
-    for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
-      const LightTreeNode& n = tree.nodes[i];
-      std::uint32_t* w = &packed.words[next];
-      w[0] = wordOf(n.boxMin.x), w[1] = wordOf(n.boxMin.y), w[2] = wordOf(n.boxMin.z);
-      w[3] = std::uint32_t(n.representative);
-      if (int(i) < tree.firstLeaf()) {
-        w[4] = wordOf(n.boxMax.x), w[5] = wordOf(n.boxMax.y), w[6] = wordOf(n.boxMax.z);
-        w[8] = packed.colour.encode(n.intensity);
-      } else {  // a leaf's box is its light's position: the words hold its exact intensity
-        w[4] = wordOf(n.intensity.r), w[5] = wordOf(n.intensity.g), w[6] = wordOf(n.intensity.b);
-      }
-      w[7] = wordOf(n.invRange2);
-      if (t == 1) w[9] = wordOf(n.invRange2Max);
-      if (t == 2) {
-        // 1e-4 rad of margin covers the float rounding of the cone merges.
-        const double theta =
-            std::min(double(n.spread) + double(n.outerAngle) + 1e-4, glm::pi<double>());
-        w[9] = wordOf(float(std::cos(theta)));
-        w[10] = wordOf(n.axis.x), w[11] = wordOf(n.axis.y), w[12] = wordOf(n.axis.z);
-        w[13] = wordOf(float(std::sin(theta)));
-      }
-      next += t == 2 ? layout::kSpotNodeWords : layout::kNodeWords;
-    }
+    const std::size_t stride = t == 2 ? layout::kSpotNodeWords : layout::kNodeWords;
+    std::uint32_t* const out = &packed.words[next];
+    // Nodes write disjoint words: shares of them are packed on threads at once.
+    runOnShares(sharesOf(tree.nodes.size(), kNodesPerThread), tree.nodes.size(),
+                [&](int, std::size_t from, std::size_t to) {
+                  for (std::size_t i = from; i < to; ++i)
+                    packNode(tree, int(i), t, packed.colour, out + stride * i);
+                });
+    next += stride * tree.nodes.size();
   }
   return packed;
 }

@@ -1,6 +1,9 @@
 #pragma once
 // Runs work(0) … work(threads − 1) at once, work(0) on this thread, and once all have ended
 // rethrows the first exception any of them threw (an exception may not leave a thread).
+// runOnShares cuts a range of items into consecutive shares, one a thread.
+#include <algorithm>
+#include <cstddef>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -25,6 +28,22 @@ void runOnThreads(int threads, const Work& work) {
   guarded(0);
   for (std::thread& th : pool) th.join();
   if (error) std::rethrow_exception(error);
+}
+
+// How many shares runOnShares cuts `count` items into: one a hardware thread, but none of
+// fewer than `minShare` items (thread start-up would cost more than it saves).
+inline int sharesOf(std::size_t count, std::size_t minShare) {
+  const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
+  return int(std::clamp(count / std::max<std::size_t>(minShare, 1), std::size_t(1), hardware));
+}
+
+// Runs work(k, from, to) for share k of `shares` over items [0, count), at once.
+template <typename Work>
+void runOnShares(int shares, std::size_t count, const Work& work) {
+  runOnThreads(shares, [&](int k) {
+    work(k, count * std::size_t(k) / std::size_t(shares),
+         count * std::size_t(k + 1) / std::size_t(shares));
+  });
 }
 
 }  // namespace manylight

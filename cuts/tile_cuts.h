@@ -53,6 +53,7 @@
 // the seeds that do not hold lie where cuts are large anyway (object edges, dim undersides).
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <vector>
 
 #include "bake/light_tree_pack.h"
@@ -237,17 +238,19 @@ class TileCutter {
   // A node as glsl/light_tree.glsl's fetchNode reads it, decoded once.
   // Its first kNodeRows floats are NodeLanes' rows in order (cuts/node_lanes.h), so that
   // eight nodes are gathered into lanes by transposing them.
+  // Trivial, so that its arrays are allocated untouched and first written by the threads
+  // that decode them; decode sets every field.
   struct alignas(32) Node {
-    glm::vec3 boxMin, boxMax, intensity, axis{0.0f};
-    float invRange2, w2, sinTheta = 0.0f;
+    glm::vec3 boxMin, boxMax, intensity, axis;  // axis: spots only, else 0
+    float invRange2, w2, sinTheta;
     // Its representative's light, as its leaf holds it: position (direction), 1/range²; a
     // spot's axis (the way it shines) and cos θ, and its cone as the light texture holds it,
     // smoothstep(clamp(cos · scale + offset)) of the cosine to the axis.
-    glm::vec3 repPoint{0.0f}, repAxis{0.0f};
-    float repInvRange2 = 0.0f, repCos = 0.0f;
+    glm::vec3 repPoint, repAxis;
+    float repInvRange2, repCos;
     float leafRow;  // 1 for a leaf, else 0
     int representative;
-    float repConeScale = 0.0f, repConeOffset = 0.0f;
+    float repConeScale, repConeOffset;
     bool leaf() const { return leafRow != 0.0f; }
   };
   const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
@@ -264,7 +267,7 @@ class TileCutter {
   void emit(Cut& cut, std::vector<std::uint32_t>& entries, CutSeed* next) const;
   static Node decode(const PackedTrees& packed, int tree, int i);
 
-  std::vector<Node> nodes_[3];  // per tree
+  std::unique_ptr<Node[]> nodes_[3];  // per tree, 2 · leaves_ − 1 (none without leaves)
   int leaves_[3];
   NodeColourCoder colour_;
 };

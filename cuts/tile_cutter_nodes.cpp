@@ -2,15 +2,22 @@
 // its representative's light beside it.
 #include <algorithm>
 #include <cstddef>
+#include <type_traits>
 
 #include "bake/light_pack.h"
 #include "bake/light_tree_layout.h"
+#include "bake/parallel.h"
 #include "cuts/node_lanes.h"
 #include "cuts/tile_cuts.h"
 
 namespace manylight {
 
 using layout::floatOf;
+
+namespace {
+// Fewer nodes than this a thread are decoded on one.
+constexpr std::size_t kNodesPerThread = 65536;
+}  // namespace
 
 TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& lights)
     : colour_(packed.colour) {
@@ -21,9 +28,13 @@ TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& ligh
   int slots = 0;
   for (int t = 0; t < 3; ++t) {
     leaves_[t] = packed.leaves[t];
-    const int count = leaves_[t] > 0 ? 2 * leaves_[t] - 1 : 0;
-    nodes_[t].reserve(std::size_t(count));
-    for (int i = 0; i < count; ++i) nodes_[t].push_back(decode(packed, t, i));
+    const std::size_t count = leaves_[t] > 0 ? std::size_t(2 * leaves_[t] - 1) : 0;
+    static_assert(std::is_trivially_default_constructible_v<Node>);
+    nodes_[t].reset(new Node[count]);
+    runOnShares(sharesOf(count, kNodesPerThread), count,
+                [&](int, std::size_t from, std::size_t to) {
+                  for (std::size_t i = from; i < to; ++i) nodes_[t][i] = decode(packed, t, int(i));
+                });
     for (int i = leaves_[t] - 1; i < 2 * leaves_[t] - 1; ++i) {
       slots = std::max(slots, node(t, i).representative + 1);
     }
@@ -35,8 +46,8 @@ TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& ligh
       const int slot = node(t, i).representative;
       if (slot >= 0) leafOfSlot[std::size_t(slot)] = i;
     }
-    for (Node& n : nodes_[t]) {
-      if (n.representative < 0) continue;
+    const auto carry = [&](Node& n) {
+      if (n.representative < 0) return;
       const Node& l = node(t, leafOfSlot[std::size_t(n.representative)]);
       n.repPoint = l.boxMin;
       n.repInvRange2 = l.invRange2;
@@ -47,7 +58,12 @@ TileCutter::TileCutter(const PackedTrees& packed, const std::vector<Light>& ligh
         n.repConeScale = cone.scale;
         n.repConeOffset = cone.offset;
       }
-    }
+    };
+    const std::size_t count = leaves_[t] > 0 ? std::size_t(2 * leaves_[t] - 1) : 0;
+    runOnShares(sharesOf(count, kNodesPerThread), count,
+                [&](int, std::size_t from, std::size_t to) {
+                  for (std::size_t i = from; i < to; ++i) carry(nodes_[t][i]);
+                });
   }
 }
 
@@ -68,10 +84,11 @@ TileCutter::Node TileCutter::decode(const PackedTrees& packed, int tree, int i) 
   n.boxMax = leaf ? n.boxMin : words46;
   n.intensity = leaf ? words46 : packed.colour.decode(w[8]);
   n.w2 = floatOf(w[9]);
-  if (tree == 2) {
-    n.axis = {floatOf(w[10]), floatOf(w[11]), floatOf(w[12])};
-    n.sinTheta = floatOf(w[13]);
-  }
+  n.axis = tree == 2 ? glm::vec3(floatOf(w[10]), floatOf(w[11]), floatOf(w[12])) : glm::vec3(0.0f);
+  n.sinTheta = tree == 2 ? floatOf(w[13]) : 0.0f;
+  // The constructor carries the representative's light in.
+  n.repPoint = n.repAxis = glm::vec3(0.0f);
+  n.repInvRange2 = n.repCos = n.repConeScale = n.repConeOffset = 0.0f;
   return n;
 }
 

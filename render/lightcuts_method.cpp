@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <thread>
 
 #include "gl/context.h"
@@ -19,12 +20,21 @@ LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& l
       distance_(distance),
       width_(gbuffer.width()),
       height_(gbuffer.height()) {
-  if (!distance) tileCutter_ = std::make_unique<TileCutter>(layout_, lights);
   std::vector<std::uint32_t>& words = layout_.words;
   const std::size_t nodeWords = words.size();
   if (words.empty()) words.assign(4, 0u);  // no lights: keep the sampler complete
+  // The CPU's copy of the nodes is decoded on other threads while this one, the context's,
+  // uploads the words (both only read them): at 2^20 lights each takes a few tenths of a
+  // second.
+  std::future<std::unique_ptr<TileCutter>> cutter;
+  if (!distance) {
+    cutter = std::async(std::launch::async,
+                        [this, &lights] { return std::make_unique<TileCutter>(layout_, lights); });
+  }
+  // (A throw here waits for it: std::async's future does so as it goes.)
   nodes_ = gl::uploadTextureBuffer(words.data(), words.size() / 4, GL_RGBA32UI,
                                    "light trees of " + std::to_string(nodeWords) + " words");
+  if (cutter.valid()) tileCutter_ = cutter.get();
   words = {};
 
   if (tileCutter_) {  // sized once; each frame's cut numbers replace the last
