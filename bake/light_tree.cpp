@@ -189,7 +189,9 @@ struct Builder {
         mn = glm::min(mn, items[i].point), mx = glm::max(mx, items[i].point);
       const glm::vec3 e = mx - mn;
       axes.partition(first, first + (mid - lo), first + (hi - lo),
-                     e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2);
+                     e.x >= e.y && e.x >= e.z ? 0
+                     : e.y >= e.z             ? 1
+                                              : 2);
       return;
     }
     const int n = hi - lo;
