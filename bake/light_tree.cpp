@@ -171,8 +171,8 @@ struct Splitter {
 // costs a selection and two metric passes, which at 2^20 lights were most of the build.
 // A split whose cost is close between axes is the only one a sample can choose otherwise,
 // and there the choice matters least (mean cut: docs/performance.md).
-constexpr int kSampledSplitAbove = 1024;
-constexpr int kSplitSample = 256;
+constexpr int kSampledSplitAbove = 4096;
+constexpr int kSplitSample = 1024;
 
 struct Builder {
   std::vector<Item> items;

@@ -127,13 +127,35 @@ class SceneWalker {
     // Iterative depth-first walk. checkStructure has ruled out cycles and second parents, so
     // a node met twice is listed twice among the roots, or is both a root and a child.
     std::vector<bool> visited(bulk_.nodes.size(), false);
-    struct Item {
-      int node;
-      glm::mat4 parent;
-    };
     std::vector<Item> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
-      stack.push_back({*it, glm::mat4(1.0f)});
+    // Root by root (a scene of a million lights may list each as a root), each depth first.
+    for (const int root : roots) {
+      stack.push_back({root, glm::mat4(1.0f)});
+      walkFrom(stack, visited);
+    }
+    if (lightsSeen_ > options_.lightBudget) {
+      throw SceneError(std::to_string(lightsSeen_) + " lights exceed the light budget of " +
+                       std::to_string(options_.lightBudget) + " (--light-budget)");
+    }
+    for (std::size_t i = 0; i < cameraPlaced_.size(); ++i) {
+      if (!cameraPlaced_[i]) {
+        scene_.warnings.push_back("camera " + std::to_string(i) +
+                                  " is used by no node of the scene; placed at the origin");
+      }
+    }
+  }
+
+  // Where each of Scene::lights comes from, in order.
+  const std::vector<gltf::LightSource>& lightSources() const { return lightSources_; }
+
+ private:
+  struct Item {
+    int node;
+    glm::mat4 parent;
+  };
+
+  // Places the nodes below the one on `stack` (its only item), depth first.
+  void walkFrom(std::vector<Item>& stack, std::vector<bool>& visited) {
     while (!stack.empty()) {
       const Item item = stack.back();
       stack.pop_back();
@@ -152,37 +174,23 @@ class SceneWalker {
         stack.push_back({*--c, world});
       }
     }
-    if (lightsSeen_ > options_.lightBudget) {
-      throw SceneError(std::to_string(lightsSeen_) + " lights exceed the light budget of " +
-                       std::to_string(options_.lightBudget) + " (--light-budget)");
-    }
-    for (std::size_t i = 0; i < cameraPlaced_.size(); ++i) {
-      if (!cameraPlaced_[i]) {
-        scene_.warnings.push_back("camera " + std::to_string(i) +
-                                  " is used by no node of the scene; placed at the origin");
-      }
-    }
   }
 
-  // Where each of Scene::lights comes from, in order.
-  const std::vector<gltf::LightSource>& lightSources() const { return lightSources_; }
-
- private:
   void place(int index, const gltf::NodeRecord& node, const glm::mat4& world) {
-    const std::string where = "node " + std::to_string(index);
+    const auto where = [index] { return "node " + std::to_string(index); };
     for (int i = 0; i < 16; ++i) {
       if (!std::isfinite(glm::value_ptr(world)[i])) {
-        throw SceneError(where + ": transform is not finite");
+        throw SceneError(where() + ": transform is not finite");
       }
     }
     if (node.mesh >= 0) {
       scene_.instances.push_back({convert_.mesh(node.mesh), world});
     } else if (node.mesh < -1) {
-      throw SceneError(where + ": mesh " + std::to_string(node.mesh) + " does not exist");
+      throw SceneError(where() + ": mesh " + std::to_string(node.mesh) + " does not exist");
     }
     if (node.camera >= 0) {
       if (std::size_t(node.camera) >= model_.cameras.size()) {
-        throw SceneError(where + ": camera " + std::to_string(node.camera) + " does not exist");
+        throw SceneError(where() + ": camera " + std::to_string(node.camera) + " does not exist");
       }
       if (!cameraPlaced_[node.camera]) {
         cameraPlaced_[node.camera] = true;
@@ -199,7 +207,7 @@ class SceneWalker {
         lightSources_.push_back({index, light});
       }
     } else if (light < -1) {
-      throw SceneError(where + ": light " + std::to_string(light) + " does not exist");
+      throw SceneError(where() + ": light " + std::to_string(light) + " does not exist");
     }
   }
 
