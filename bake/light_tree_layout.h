@@ -41,6 +41,7 @@ namespace manylight::layout {
 
 inline constexpr int kNodeWords = 10;
 inline constexpr int kSpotNodeWords = 14;
+inline constexpr int kColourWord = 8;  // an internal node's compact intensity
 
 // A float as the word that stores it, and back (here and in the tile cuts' texels).
 inline std::uint32_t wordOf(float f) {

@@ -38,7 +38,7 @@ void packNode(const LightTree& tree, int i, int t, const NodeColourCoder& colour
   w[3] = std::uint32_t(n.representative);
   if (i < tree.firstLeaf()) {
     w[4] = wordOf(n.boxMax.x), w[5] = wordOf(n.boxMax.y), w[6] = wordOf(n.boxMax.z);
-    w[8] = colour.encode(n.intensity);
+    w[layout::kColourWord] = colour.encode(n.intensity);
   } else {  // a leaf's box is its light's position: the words hold its exact intensity
     w[4] = wordOf(n.intensity.r), w[5] = wordOf(n.intensity.g), w[6] = wordOf(n.intensity.b);
   }
@@ -57,7 +57,9 @@ void packNode(const LightTree& tree, int i, int t, const NodeColourCoder& colour
 }  // namespace
 
 PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding coding) {
-  PackedTrees packed{{}, {0, 0, 0}, {0, 0, 0}, NodeColourCoder(coding, decodedIntensities(trees))};
+  const std::vector<glm::vec3> colours = decodedIntensities(trees);
+  PackedTrees packed{
+      {}, {0, 0, 0}, {0, 0, 0}, NodeColourCoder(coding, colours, NodeColourCoder::Unmeasured{})};
   std::size_t words = 0;
   for (const LightTree& tree : trees) {
     words += tree.nodes.size() *
@@ -82,6 +84,19 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
                 });
     next += stride * tree.nodes.size();
   }
+  // The coder measured on the words just packed, in decodedIntensities' order.
+  std::vector<std::uint32_t> colourWords;
+  colourWords.reserve(colours.size());
+  for (const LightTree& tree : trees) {
+    const int t = typeIndex(tree.type);
+    const std::size_t stride = t == 2 ? layout::kSpotNodeWords : layout::kNodeWords;
+    for (int i = 0; i < tree.firstLeaf(); ++i) {
+      if (!tree.nodes[std::size_t(i)].empty())
+        colourWords.push_back(packed.words[std::size_t(packed.base[t]) + stride * std::size_t(i) +
+                                           layout::kColourWord]);
+    }
+  }
+  packed.colour.measure(colours, colourWords);
   return packed;
 }
 

@@ -84,6 +84,17 @@ double percentile99(std::vector<double>& v) {
 }  // namespace
 
 NodeColourCoder::NodeColourCoder(NodeColourCoding coding, const std::vector<glm::vec3>& colours)
+    : NodeColourCoder(coding, colours, Unmeasured{}) {
+  std::vector<std::uint32_t> words(colours.size());
+  runOnShares(sharesOf(colours.size(), kColoursPerThread), colours.size(),
+              [&](int, std::size_t from, std::size_t to) {
+                for (std::size_t i = from; i < to; ++i) words[i] = encode(colours[i]);
+              });
+  measure(colours, words);
+}
+
+NodeColourCoder::NodeColourCoder(NodeColourCoding coding, const std::vector<glm::vec3>& colours,
+                                 Unmeasured)
     : coding_(coding) {
   if (coding == NodeColourCoding::Fitted) {
     std::vector<FitPair> pairs;
@@ -117,6 +128,10 @@ NodeColourCoder::NodeColourCoder(NodeColourCoding coding, const std::vector<glm:
   }
   if (coding == NodeColourCoding::Rgb9e5)
     slackFloor = std::exp2(-kExponentBias - kMantissaBits) * double(scale_);
+}
+
+void NodeColourCoder::measure(const std::vector<glm::vec3>& colours,
+                              const std::vector<std::uint32_t>& words) {
   // Measured on a few threads, each over its share of the colours, in order: the same
   // figures as one thread's.
   struct Share {
@@ -132,7 +147,7 @@ NodeColourCoder::NodeColourCoder(NodeColourCoding coding, const std::vector<glm:
       const glm::vec3& c = colours[i];
       const float m = largest(c);
       if (!(m > 0.0f)) continue;
-      const glm::dvec3 d = glm::dvec3(decode(encode(c)));
+      const glm::dvec3 d = glm::dvec3(decode(words[i]));
       const double dm = std::max(d.x, std::max(d.y, d.z));
       for (int k = 0; k < 3; ++k) {
         const double e = std::abs(d[k] - double(c[k]));

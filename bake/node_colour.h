@@ -34,6 +34,11 @@ class NodeColourCoder {
   // Fits the coder to `colours` (linear RGB, ≥ 0: the internal nodes' intensities) and
   // measures what it does to them.
   NodeColourCoder(NodeColourCoding coding, const std::vector<glm::vec3>& colours);
+  // Fits it only; measure() then takes the words its caller encodes anyway.
+  struct Unmeasured {};
+  NodeColourCoder(NodeColourCoding coding, const std::vector<glm::vec3>& colours, Unmeasured);
+  // Sets the error figures below from `colours` and their words, words[i] = encode(colours[i]).
+  void measure(const std::vector<glm::vec3>& colours, const std::vector<std::uint32_t>& words);
   NodeColourCoder() : NodeColourCoder(NodeColourCoding::Rgb9e5, {}) {}
   // A coder as baked before (bake/baked_file.h): its constants; the caller restores the
   // error figures.

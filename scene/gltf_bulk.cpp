@@ -1,6 +1,8 @@
 #include "scene/gltf_bulk.h"
 
 #include <cstring>
+#include <exception>
+#include <future>
 
 #include "scene/gltf_bulk_read.h"
 
@@ -45,7 +47,109 @@ Span readArray(od::document& doc, od::value v, std::string_view json, const std:
   return s;
 }
 
-void readLightsExtension(od::document& doc, od::value v, std::string_view json, SplitJson& out,
+// The two arrays that grow with the light count, read after the rest of the document, each
+// by a parser of its own: at once, on two threads, when both are large.
+enum class Bulk { Nodes, Lights };
+
+struct Deferred {
+  Bulk kind;
+  Span span;
+};
+
+// Arrays whose text is shorter than this are read on the calling thread.
+constexpr std::size_t kThreadBytes = std::size_t(1) << 20;
+
+// The array `v`, checked to be one, skipped; its span is read later.
+Span deferArray(od::value v, std::string_view json, const std::string& what) {
+  od::array a;
+  check(v.get_array().get(a), [&] { return what + " is not an array"; });
+  std::string_view raw;
+  check(a.raw_json().get(raw));
+  const std::size_t begin = std::size_t(raw.data() - json.data());
+  std::size_t end = begin + raw.size();
+  while (end > begin && json[end - 1] != ']') --end;  // the view runs to the next token
+  if (end <= begin || json[begin] != '[') throw Syntax{simdjson::TAPE_ERROR};
+  return {begin, end};
+}
+
+// Reads the array at `span` of `json` (padded to `capacity`) with a parser of its own.
+void readDeferred(std::string_view json, std::size_t capacity, const Deferred& d, BulkArrays& out) {
+  od::parser parser;
+  od::document doc;
+  check(
+      parser.iterate(json.data() + d.span.begin, d.span.end - d.span.begin, capacity - d.span.begin)
+          .get(doc));
+  od::array a;
+  check(doc.get_array().get(a));
+  std::size_t count = 0;
+  check(a.count_elements().get(count));
+  if (d.kind == Bulk::Nodes) {
+    out.nodes.clear();
+    out.children.clear();
+    out.matrices.clear();
+    out.nodes.reserve(count);
+  } else {
+    out.lights.clear();
+    out.otherTypes.clear();
+    out.lights.reserve(count);
+  }
+  std::size_t i = 0;
+  for (auto element : a) {
+    od::value x;
+    check(element.get(x));
+    (d.kind == Bulk::Nodes ? readNode : readLight)(x, i++, out);
+  }
+}
+
+// The deferred arrays of one kind, in order (a later one replaces an earlier one's records,
+// as for repeated keys); the offset of the first that failed, and why, if one did.
+struct KindOutcome {
+  std::size_t failedAt = 0;
+  std::exception_ptr error;
+};
+
+KindOutcome readKind(std::string_view json, std::size_t capacity,
+                     const std::vector<Deferred>& deferred, Bulk kind, BulkArrays& out) {
+  for (const Deferred& d : deferred) {
+    if (d.kind != kind) continue;
+    try {
+      readDeferred(json, capacity, d, out);
+    } catch (...) {
+      return {d.span.begin, std::current_exception()};
+    }
+  }
+  return {};
+}
+
+// Reads every deferred array into `out`; throws what the first failing one (in the text's
+// order) threw, as one reading the text from the start would have.
+void readAllDeferred(std::string_view json, std::size_t capacity,
+                     const std::vector<Deferred>& deferred, BulkArrays& out) {
+  std::size_t bytes[2] = {0, 0};
+  for (const Deferred& d : deferred) bytes[int(d.kind)] += d.span.end - d.span.begin;
+  BulkArrays lights;  // the lights' records, apart while two threads fill them
+  std::future<KindOutcome> second;
+  if (bytes[0] >= kThreadBytes && bytes[1] >= kThreadBytes) {
+    second = std::async(std::launch::async,
+                        [&] { return readKind(json, capacity, deferred, Bulk::Lights, lights); });
+  }
+  KindOutcome outcomes[2];
+  outcomes[0] = readKind(json, capacity, deferred, Bulk::Nodes, out);
+  if (second.valid()) {
+    outcomes[1] = second.get();
+    out.lights = std::move(lights.lights);
+    out.otherTypes = std::move(lights.otherTypes);
+  } else {
+    outcomes[1] = readKind(json, capacity, deferred, Bulk::Lights, out);
+  }
+  const KindOutcome* first = nullptr;
+  for (const KindOutcome& o : outcomes) {
+    if (o.error && (!first || o.failedAt < first->failedAt)) first = &o;
+  }
+  if (first) std::rethrow_exception(first->error);
+}
+
+void readLightsExtension(od::value v, std::string_view json, std::vector<Deferred>& deferred,
                          std::vector<Span>& spans) {
   od::object o;
   if (v.get_object().get(o) != simdjson::SUCCESS) return;  // tinygltf ignores it too
@@ -54,12 +158,8 @@ void readLightsExtension(od::document& doc, od::value v, std::string_view json, 
     if (key != "lights") continue;
     od::value lights;
     check(field.value().get(lights));
-    out.bulk.lights.clear();
-    out.bulk.otherTypes.clear();
-    spans.push_back(readArray(
-        doc, lights, json, "KHR_lights_punctual.lights",
-        [&](std::size_t n) { out.bulk.lights.reserve(n); },
-        [&](od::value x, std::size_t i) { readLight(x, i, out.bulk); }));
+    spans.push_back(deferArray(lights, json, "KHR_lights_punctual.lights"));
+    deferred.push_back({Bulk::Lights, spans.back()});
   }
 }
 
@@ -91,7 +191,7 @@ void readScene(od::document& doc, od::value v, std::string_view json,
 }
 
 void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
-                  std::vector<Span>& spans) {
+                  std::vector<Deferred>& deferred, std::vector<Span>& spans) {
   od::object top;
   check(doc.get_object().get(top));
   for (auto field : top) {
@@ -99,12 +199,8 @@ void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
     od::value value;
     check(field.value().get(value));
     if (key == "nodes") {
-      out.bulk.nodes.clear();
-      out.bulk.children.clear();
-      out.bulk.matrices.clear();
-      spans.push_back(readArray(
-          doc, value, json, "nodes", [&](std::size_t n) { out.bulk.nodes.reserve(n); },
-          [&](od::value x, std::size_t i) { readNode(x, i, out.bulk); }));
+      spans.push_back(deferArray(value, json, "nodes"));
+      deferred.push_back({Bulk::Nodes, spans.back()});
     } else if (key == "scenes" && isArray(value)) {
       out.bulk.sceneNodes.clear();
       od::array scenes;
@@ -123,7 +219,7 @@ void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
         if (name != "KHR_lights_punctual") continue;
         od::value lights;
         check(ext.value().get(lights));
-        readLightsExtension(doc, lights, json, out, spans);
+        readLightsExtension(lights, json, deferred, spans);
       }
     }
   }
@@ -138,11 +234,16 @@ SplitJson splitJson(std::string_view text, std::size_t capacity) {
   capacity -= bom.size();
   SplitJson out;
   std::vector<Span> spans;
+  std::vector<Deferred> deferred;
   try {
-    od::parser parser;
-    od::document doc;
-    check(parser.iterate(json.data(), json.size(), capacity).get(doc));
-    readTopLevel(doc, json, out, spans);
+    {
+      // This parser's index (4 bytes a token) is freed before the deferred arrays' own.
+      od::parser parser;
+      od::document doc;
+      check(parser.iterate(json.data(), json.size(), capacity).get(doc));
+      readTopLevel(doc, json, out, deferred, spans);
+    }
+    readAllDeferred(json, capacity, deferred, out.bulk);
   } catch (const Syntax& s) {
     SplitJson failed;
     failed.syntaxError = simdjson::error_message(s.code);

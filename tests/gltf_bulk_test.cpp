@@ -99,6 +99,54 @@ TEST(GltfBulk, SceneRootsAreReadAsTinygltfReadThem) {
   EXPECT_FALSE(split(R"({"scenes": [{"nodes": [1, 2.]}]})").parsed);
 }
 
+// `count` nodes, each with light i, and `count` point lights of intensity i, as JSON arrays.
+std::pair<std::string, std::string> manyNodesAndLights(int count) {
+  std::string nodes = "[", lights = "[";
+  for (int i = 0; i < count; ++i) {
+    const std::string sep = i ? "," : "";
+    nodes += sep + R"({"translation": [)" + std::to_string(i) +
+             R"(, 0, 0], "extensions": {"KHR_lights_punctual": {"light": )" + std::to_string(i) +
+             "}}}";
+    lights += sep + R"({"type": "point", "intensity": )" + std::to_string(i) + "}";
+  }
+  return {nodes + "]", lights + "]"};
+}
+
+// Past a megabyte each, nodes and lights are read on two threads: the same records, and of
+// two faulty arrays the one earlier in the text is named, as a reader from the start would.
+TEST(GltfBulk, LargeArraysReadOnTwoThreadsAsOnOne) {
+  const int count = 40000;  // about 2.8 MB of nodes, 1.5 MB of lights
+  auto [nodes, lights] = manyNodesAndLights(count);
+  const gltf::SplitJson s = split(document(nodes, lights));
+  ASSERT_TRUE(s.parsed);
+  ASSERT_EQ(s.bulk.nodes.size(), std::size_t(count));
+  ASSERT_EQ(s.bulk.lights.size(), std::size_t(count));
+  for (int i = 0; i < count; i += 997) {
+    EXPECT_EQ(s.bulk.nodes[std::size_t(i)].translation[0], double(i));
+    EXPECT_EQ(s.bulk.nodes[std::size_t(i)].light, i);
+    EXPECT_EQ(s.bulk.lights[std::size_t(i)].intensity, double(i));
+  }
+  nodes.insert(nodes.size() - 1, R"(, {"mesh": "x"})");
+  lights.insert(lights.size() - 1, R"(, {"type": "point", "range": "x"})");
+  const std::string lightError = "light " + std::to_string(count) + ": range is not a number";
+  const std::string nodeError = "node " + std::to_string(count) + ": mesh is not an index";
+  try {
+    split(document(nodes, lights));  // the lights come first
+    ADD_FAILURE() << "split";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), lightError);
+  }
+  const std::string nodesFirst = R"({"nodes": )" + nodes +
+                                 R"(, "extensions": {"KHR_lights_punctual": {"lights": )" + lights +
+                                 "}}}";
+  try {
+    split(nodesFirst);
+    ADD_FAILURE() << "split";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), nodeError);
+  }
+}
+
 TEST(GltfBulk, TextThatIsNotJsonIsLeftToTinygltf) {
   EXPECT_FALSE(split("{ this is not json").parsed);
   EXPECT_FALSE(split(R"({"nodes": [{"extras": {"a": 56.0f}}]})").parsed);
