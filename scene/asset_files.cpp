@@ -1,5 +1,10 @@
 #include "scene/asset_files.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cctype>
 #include <fstream>
 
@@ -63,53 +68,107 @@ bool AssetFiles::exists(const std::string& path) {
   return true;
 }
 
-bool AssetFiles::read(std::vector<unsigned char>* out, std::string* err, const std::string& path) {
-  return read(out, err, path, 0);
-}
-
-bool AssetFiles::read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                      std::size_t padding) {
-  fs::path resolved;
-  std::string reason = check(path, &resolved);
+bool AssetFiles::admit(const std::string& path, std::string* err, fs::path* resolved,
+                       std::uintmax_t* size) {
+  std::string reason = check(path, resolved);
   std::error_code ec;
   bool missing = false;
   if (reason.empty()) {
     const std::string what =
         path == scene_ ? std::string("scene")
                        : "URI '" + path.substr(base_.empty() ? 0 : base_.size() + 1) + "'";
-    if (!fs::exists(resolved, ec)) {
+    if (!fs::exists(*resolved, ec)) {
       reason = what + ": no such file";
       missing = true;
-    } else if (!fs::is_regular_file(resolved, ec)) {
+    } else if (!fs::is_regular_file(*resolved, ec)) {
       reason = what + ": not a regular file";
     }
   }
-  std::uintmax_t size = 0;
   if (reason.empty()) {
-    size = fs::file_size(resolved, ec);
-    if (ec) reason = resolved.string() + ": " + ec.message();
+    *size = fs::file_size(*resolved, ec);
+    if (ec) reason = resolved->string() + ": " + ec.message();
   }
-  if (reason.empty() && size > bytesLeft_) {
+  if (reason.empty() && *size > bytesLeft_) {
     reason = "the scene's files exceed the limit of " + std::to_string(maxBytes_) + " bytes";
   }
-  if (!reason.empty()) {
-    // A missing file is the caller's to judge (tinygltf: an error for a buffer, a warning
-    // for an image); anything refused is an error whatever asked for it.
-    std::string& first = missing ? missing_ : refusal_;
-    if (first.empty()) first = reason;
-    *err = reason;
-    return false;
-  }
+  if (reason.empty()) return true;
+  // A missing file is the caller's to judge (tinygltf: an error for a buffer, a warning
+  // for an image); anything refused is an error whatever asked for it.
+  std::string& first = missing ? missing_ : refusal_;
+  if (first.empty()) first = reason;
+  *err = reason;
+  return false;
+}
+
+bool AssetFiles::read(std::vector<unsigned char>* out, std::string* err, const std::string& path) {
+  fs::path resolved;
+  std::uintmax_t size = 0;
+  if (!admit(path, err, &resolved, &size)) return false;
   std::ifstream f(resolved, std::ios::binary);
-  out->clear();
-  out->resize(size + padding);
+  out->assign(size, 0);
   if (size > 0 && !f.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) {
     *err = "cannot read";
     return false;
   }
-  out->resize(size);  // keeps the capacity, and the zero padding in it
   bytesLeft_ -= size;
   return true;
+}
+
+bool AssetFiles::read(FileBytes* out, std::string* err, const std::string& path,
+                      std::size_t padding) {
+  fs::path resolved;
+  std::uintmax_t size = 0;
+  if (!admit(path, err, &resolved, &size)) return false;
+  out->release();
+  // Anonymous zero pages first, the file's pages over their start: whatever the file's
+  // size, the bytes past its end up to the padding are mapped and zero.
+  const std::size_t page = std::size_t(sysconf(_SC_PAGESIZE));
+  const std::size_t bytes = (std::size_t(size) + padding + page - 1) / page * page;
+  void* base = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (base == MAP_FAILED) {
+    *err = "cannot map " + std::to_string(bytes) + " bytes";
+    return false;
+  }
+  out->mapped_ = base;
+  out->mappedBytes_ = bytes;
+  out->data_ = static_cast<unsigned char*>(base);
+  out->capacity_ = bytes;
+  if (size > 0) {
+    const int fd = open(resolved.c_str(), O_RDONLY | O_CLOEXEC);
+    void* file = fd < 0 ? MAP_FAILED
+                        : mmap(base, std::size_t(size), PROT_READ | PROT_WRITE,
+                               MAP_PRIVATE | MAP_FIXED | MAP_POPULATE, fd, 0);
+    if (fd >= 0) close(fd);
+    if (file == MAP_FAILED) {
+      out->release();
+      *err = "cannot read";
+      return false;
+    }
+  }
+  out->size_ = std::size_t(size);
+  bytesLeft_ -= size;
+  return true;
+}
+
+void FileBytes::resize(std::size_t size) {
+  if (size > capacity_) {
+    std::vector<unsigned char> grown(size);
+    std::copy(data_, data_ + size_, grown.begin());
+    release();
+    owned_ = std::move(grown);
+    data_ = owned_.data();
+    capacity_ = owned_.size();
+  }
+  size_ = size;
+}
+
+void FileBytes::release() {
+  if (mapped_) munmap(mapped_, mappedBytes_);
+  mapped_ = nullptr;
+  mappedBytes_ = 0;
+  std::vector<unsigned char>().swap(owned_);
+  data_ = nullptr;
+  size_ = capacity_ = 0;
 }
 
 }  // namespace manylight

@@ -11,6 +11,34 @@
 
 namespace manylight {
 
+// A file's bytes in memory, writable, with zero bytes readable past size() up to
+// capacity(): the file mapped copy-on-write (its pages shared with the page cache, neither
+// zeroed nor copied; only pages written are copied), or a buffer of its own once it grows
+// past its capacity.
+class FileBytes {
+ public:
+  FileBytes() = default;
+  FileBytes(const FileBytes&) = delete;
+  FileBytes& operator=(const FileBytes&) = delete;
+  ~FileBytes() { release(); }
+
+  unsigned char* data() { return data_; }
+  const unsigned char* data() const { return data_; }
+  std::size_t size() const { return size_; }
+  std::size_t capacity() const { return capacity_; }
+  // Up to capacity() in place; past it the bytes move to a buffer of their own.
+  void resize(std::size_t size);
+  void release();
+
+ private:
+  friend class AssetFiles;
+  unsigned char* data_ = nullptr;
+  std::size_t size_ = 0, capacity_ = 0;
+  void* mapped_ = nullptr;  // the mapping (file and padding), when mapped
+  std::size_t mappedBytes_ = 0;
+  std::vector<unsigned char> owned_;  // else the bytes
+};
+
 class AssetFiles {
  public:
   // `scene`: the glTF/GLB file; `base`: the folder prefix tinygltf joins URIs to (its
@@ -21,10 +49,9 @@ class AssetFiles {
   // says yes to everything, so that read() gets to name the problem.
   bool exists(const std::string& path);
   bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path);
-  // read(), leaving `padding` zero bytes readable past out->size() (in its capacity), for
-  // parsers that read ahead (simdjson).
-  bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-            std::size_t padding);
+  // read() into a mapping, leaving at least `padding` zero bytes readable past out->size()
+  // (in its capacity), for parsers that read ahead (simdjson).
+  bool read(FileBytes* out, std::string* err, const std::string& path, std::size_t padding);
 
   // The first refusal (outside the folder, not a regular file, over the byte limit) as a
   // one-line reason naming the URI; empty if none. Missing files are not refusals.
@@ -35,6 +62,9 @@ class AssetFiles {
  private:
   // Why `path` may not be read, or "" (and its resolved location in *resolved).
   std::string check(const std::string& path, std::filesystem::path* resolved) const;
+  // check() and the byte limit: the file's size, or false with *err set (and noted).
+  bool admit(const std::string& path, std::string* err, std::filesystem::path* resolved,
+             std::uintmax_t* size);
 
   std::string scene_, base_;
   std::filesystem::path root_;  // canonical scene folder

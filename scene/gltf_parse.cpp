@@ -123,7 +123,7 @@ constexpr std::size_t kGlbHeader = 20;  // magic, version, length; chunk length,
 
 // The JSON chunk of a GLB, or an empty view when the header is not one to read (tinygltf
 // then reports the faults).
-std::string_view glbJson(const std::vector<unsigned char>& glb) {
+std::string_view glbJson(const FileBytes& glb) {
   if (glb.size() < kGlbHeader || std::memcmp(glb.data() + 16, "JSON", 4) != 0) return {};
   const std::size_t jsonLength = word(glb.data() + 12);
   if (jsonLength > glb.size() - kGlbHeader) return {};
@@ -132,7 +132,7 @@ std::string_view glbJson(const std::vector<unsigned char>& glb) {
 
 // Replaces the JSON chunk of `glb` (as glbJson found it) by `json`, in place: no copy of the
 // binary chunk beside the original when the new JSON is not longer.
-void replaceGlbJson(std::vector<unsigned char>& glb, std::string json) {
+void replaceGlbJson(FileBytes& glb, std::string json) {
   const std::size_t oldLength = word(glb.data() + 12);
   json.resize((json.size() + 3) / 4 * 4, ' ');
   const std::size_t rest = glb.size() - kGlbHeader - oldLength;
@@ -154,7 +154,7 @@ void replaceGlbJson(std::vector<unsigned char>& glb, std::string json) {
 // Splits the nodes and lights out of the file's JSON (scene/gltf_bulk.h) into *bulk, and
 // leaves the rest for tinygltf: in `bytes` for a GLB, in *json for a .gltf (`bytes` then
 // freed). False when the JSON could not be read; tinygltf then gets the file as it is.
-bool splitFile(std::vector<unsigned char>& bytes, bool binary, std::string* json, BulkArrays* bulk,
+bool splitFile(FileBytes& bytes, bool binary, std::string* json, BulkArrays* bulk,
                std::string* syntaxError) {
   const std::string_view text =
       binary ? glbJson(bytes)
@@ -171,7 +171,7 @@ bool splitFile(std::vector<unsigned char>& bytes, bool binary, std::string* json
     replaceGlbJson(bytes, std::move(split.rest));
   } else {
     *json = std::move(split.rest);
-    std::vector<unsigned char>().swap(bytes);
+    bytes.release();
   }
   return true;
 }
@@ -182,19 +182,19 @@ bool parseGltfFile(tinygltf::TinyGLTF& parser, tinygltf::Model* model, BulkArray
                    std::string* err, std::string* warn, const std::string& path,
                    const std::string& base, bool binary, AssetFiles& files,
                    std::uintmax_t maxDecodedBytes) {
-  std::vector<unsigned char> bytes;
+  FileBytes bytes;
   std::string readError;
   if (!files.read(&bytes, &readError, path, kJsonPadding)) {
     *err = "Failed to read file: " + path + ": " + readError;
     return false;
   }
-  if (!binary && bytes.empty()) {
+  if (!binary && bytes.size() == 0) {
     *err = "Empty file.";
     return false;
   }
   std::string json, syntaxError;
   const bool split = splitFile(bytes, binary, &json, bulk, &syntaxError);
-  if (!binary && !split) json.assign(bytes.begin(), bytes.end());
+  if (!binary && !split) json.assign(bytes.data(), bytes.data() + bytes.size());
   Amendments amendments;
   bool ok = false;
   if (binary) {

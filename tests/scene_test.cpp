@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "base/error.h"
+#include "scene/asset_files.h"
 #include "scene/gltf_loader.h"
 #include "tests/test_support.h"
 
@@ -138,6 +139,34 @@ TEST(Scene, NoScenesShowsRootNodesAndUnknownTypesFail) {
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()), bad + ": light 0: unknown type 'area'");
   }
+}
+
+// The scene file is mapped, not copied: its bytes as written, zeros readable past its end
+// for the parser's padding (also when it ends on a page boundary), and a buffer of its own
+// once it grows past its capacity.
+TEST(Scene, SceneFilesAreMappedWithZeroPadding) {
+  namespace fs = std::filesystem;
+  for (const std::size_t size : {std::size_t(0), std::size_t(5), std::size_t(4096)}) {
+    const fs::path p = testFolder() / ("mapped-" + std::to_string(size) + ".gltf");
+    std::ofstream(p, std::ios::binary) << std::string(size, 'a');
+    AssetFiles files(p.string(), "", 1 << 20);
+    FileBytes bytes;
+    std::string err;
+    ASSERT_TRUE(files.read(&bytes, &err, p.string(), 64)) << err;
+    ASSERT_EQ(bytes.size(), size);
+    ASSERT_GE(bytes.capacity(), size + 64);
+    EXPECT_EQ(std::string(reinterpret_cast<const char*>(bytes.data()), size),
+              std::string(size, 'a'));
+    for (std::size_t i = size; i < size + 64; ++i)
+      ASSERT_EQ(bytes.data()[i], 0) << size << " " << i;
+    if (size == 0) continue;
+    bytes.data()[0] = 'b';  // writable, copy-on-write: the file keeps its bytes
+    bytes.resize(bytes.capacity() + 1);
+    EXPECT_EQ(bytes.data()[0], 'b');
+    EXPECT_EQ(bytes.size(), bytes.capacity());
+  }
+  std::ifstream f(testFolder() / "mapped-5.gltf");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(f), {}), "aaaaa");
 }
 
 }  // namespace
