@@ -69,19 +69,47 @@ class MappedFile {
 
 }  // namespace
 
+namespace {
+
+// bakedChecksum over pieces given in turn: the same value as over their concatenation.
+class Checksum {
+ public:
+  void add(std::string_view bytes) {
+    while (!bytes.empty() && pending_ > 0) {  // complete the word begun by the last piece
+      word_[pending_++] = bytes[0];
+      bytes.remove_prefix(1);
+      if (pending_ == 8) fold(word_), pending_ = 0;
+    }
+    const std::size_t words = bytes.size() / 8;
+    for (std::size_t i = 0; i < words; ++i) fold(bytes.data() + 8 * i);
+    for (std::size_t i = words * 8; i < bytes.size(); ++i) word_[pending_++] = bytes[i];
+  }
+  std::uint64_t value() const {
+    std::uint64_t h = h_;
+    for (std::size_t i = 0; i < pending_; ++i) h = (h ^ std::uint8_t(word_[i])) * kPrime;
+    return h;
+  }
+
+ private:
+  static constexpr std::uint64_t kPrime = 0x100000001b3ull;
+  void fold(const char* p) {
+    std::uint64_t w;
+    std::memcpy(&w, p, 8);
+    h_ = (h_ ^ w) * kPrime;
+  }
+  std::uint64_t h_ = 0xcbf29ce484222325ull;
+  char word_[8] = {};
+  std::size_t pending_ = 0;
+};
+
+}  // namespace
+
 // FNV-1a, 64 bits, taken over 64-bit little-endian words (8× fewer multiplications than
 // byte by byte), then the last size % 8 bytes one by one.
 std::uint64_t bakedChecksum(std::string_view bytes) {
-  constexpr std::uint64_t kPrime = 0x100000001b3ull;
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  const std::size_t words = bytes.size() / 8;
-  for (std::size_t i = 0; i < words; ++i) {
-    std::uint64_t w;
-    std::memcpy(&w, bytes.data() + 8 * i, 8);
-    h = (h ^ w) * kPrime;
-  }
-  for (std::size_t i = words * 8; i < bytes.size(); ++i) h = (h ^ std::uint8_t(bytes[i])) * kPrime;
-  return h;
+  Checksum sum;
+  sum.add(bytes);
+  return sum.value();
 }
 
 BakedScene bakeScene(Scene scene, const TreeOptions& trees, const OctreeOptions& octree) {
@@ -109,18 +137,34 @@ void writeBakedScene(const std::string& path, const BakedScene& baked) {
         table.put(std::uint64_t(body.size()));
     offset += body.size();
   }
-  std::string file(kBakedHeaderBytes, '\0');
-  file += table.bytes();
-  for (const auto& section : sections) file += section.second;
-  std::memcpy(&file[0], kBakedMagic, 8);
+  // The sections are written as they are, not gathered into one buffer first: at a million
+  // lights they are a few hundred megabytes.
+  Checksum sum;
+  sum.add(table.bytes());
+  for (const auto& section : sections) sum.add(section.second);
+  char header[kBakedHeaderBytes] = {};
+  std::memcpy(header, kBakedMagic, 8);
   const std::uint32_t version = kBakedFormatVersion, flags = 0;
-  const std::uint64_t size = file.size();
-  std::memcpy(&file[8], &version, 4);
-  std::memcpy(&file[12], &flags, 4);
-  std::memcpy(&file[16], &size, 8);
-  const std::uint64_t sum = bakedChecksum(std::string_view(file).substr(kBakedHeaderBytes));
-  std::memcpy(&file[24], &sum, 8);
-  writeFileAtomic(path, file);
+  const std::uint64_t size = offset, checksum = sum.value();
+  std::memcpy(header + 8, &version, 4);
+  std::memcpy(header + 12, &flags, 4);
+  std::memcpy(header + 16, &size, 8);
+  std::memcpy(header + 24, &checksum, 8);
+  const std::filesystem::path tmp = prepareTemporaryFor(path);
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(header, kBakedHeaderBytes);
+    out.write(table.bytes().data(), std::streamsize(table.bytes().size()));
+    for (const auto& section : sections)
+      out.write(section.second.data(), std::streamsize(section.second.size()));
+    out.close();
+    if (!out) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw Error(path + ": cannot write");
+    }
+  }
+  commitTemporary(tmp, path);
 }
 
 bool isBakedFile(const std::string& path) {
