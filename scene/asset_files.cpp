@@ -121,7 +121,9 @@ bool AssetFiles::read(FileBytes* out, std::string* err, const std::string& path,
   if (!admit(path, err, &resolved, &size)) return false;
   out->release();
   // Anonymous zero pages first, the file's pages over their start: whatever the file's
-  // size, the bytes past its end up to the padding are mapped and zero.
+  // size, the bytes past its end up to the padding are mapped and zero. Not populated: on a
+  // writable private mapping that would copy every page, where reading faults map the page
+  // cache's own (and only pages written are copied).
   const std::size_t page = std::size_t(sysconf(_SC_PAGESIZE));
   const std::size_t bytes = (std::size_t(size) + padding + page - 1) / page * page;
   void* base = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -137,7 +139,7 @@ bool AssetFiles::read(FileBytes* out, std::string* err, const std::string& path,
     const int fd = open(resolved.c_str(), O_RDONLY | O_CLOEXEC);
     void* file = fd < 0 ? MAP_FAILED
                         : mmap(base, std::size_t(size), PROT_READ | PROT_WRITE,
-                               MAP_PRIVATE | MAP_FIXED | MAP_POPULATE, fd, 0);
+                               MAP_PRIVATE | MAP_FIXED, fd, 0);
     if (fd >= 0) close(fd);
     if (file == MAP_FAILED) {
       out->release();
