@@ -51,11 +51,13 @@
 // cut found so far) the quarter starts over from the roots. A quarter
 // whose seed holds starts from a cut close to its own and evaluates far fewer node bounds;
 // the seeds that do not hold lie where cuts are large anyway (object edges, dim undersides).
+#include <atomic>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
 #include <vector>
 
+#include "bake/light_pack.h"
 #include "bake/light_tree_pack.h"
 #include "cuts/far_field.h"
 #include "cuts/node_lanes.h"
@@ -211,8 +213,8 @@ struct CutWorkspace {
 
 class TileCutter {
  public:
-  // Decodes the nodes of `packed`, the trees of `lights`.
-  TileCutter(const PackedTrees& packed, const std::vector<Light>& lights);
+  // Keeps `packed`, the trees of `lights`, and decodes its nodes as cuts first reach them.
+  TileCutter(PackedTrees packed, const std::vector<Light>& lights);
 
   // Cuts for every tile of the frame, on `threads` threads; only for the pixels marked in
   // `only` (one byte per pixel) when it is given.
@@ -253,7 +255,14 @@ class TileCutter {
     float repConeScale, repConeOffset;
     bool leaf() const { return leafRow != 0.0f; }
   };
-  const Node& node(int tree, int i) const { return nodes_[tree][std::size_t(i)]; }
+  // Node i of `tree`, decoded with its block on first use (by whichever thread gets there
+  // first; the others wait for it). A cut reaches a small share of a large forest's nodes,
+  // so most are never decoded: their memory is never touched.
+  const Node& node(int tree, int i) const {
+    const std::size_t block = std::size_t(i) >> kBlockShift;
+    if (state_[tree][block].load(std::memory_order_acquire) != kDecoded) decodeBlock(tree, block);
+    return nodes_[tree][std::size_t(i)];
+  }
   // One cut in the making (cut_region.cpp): the steps below share it.
   struct Cut;
   // Refines the cut from its start until the rule holds or it is full; false when it is full
@@ -265,9 +274,18 @@ class TileCutter {
   void foldEntries(Cut& cut) const;
   // Writes the cut's entries, far field first, to `entries` or to `next`.
   void emit(Cut& cut, std::vector<std::uint32_t>& entries, CutSeed* next) const;
-  static Node decode(const PackedTrees& packed, int tree, int i);
+  Node decode(int tree, int i) const;
+  void decodeBlock(int tree, std::size_t block) const;
 
-  std::unique_ptr<Node[]> nodes_[3];  // per tree, 2 · leaves_ − 1 (none without leaves)
+  // Blocks of 2^kBlockShift nodes, a page of them, are decoded at once.
+  static constexpr int kBlockShift = 5;
+  enum : std::uint8_t { kRaw, kDecoding, kDecoded };
+  PackedTrees packed_;                // what nodes are decoded from
+  std::vector<int> leafOfSlot_;       // per light texture slot, its leaf (in its type's tree)
+  std::vector<SpotConeTerms> cones_;  // per spot slot, from spotStart_
+  int spotStart_ = 0;
+  mutable std::unique_ptr<Node[]> nodes_[3];  // per tree, 2 · leaves_ − 1 (none without leaves)
+  mutable std::unique_ptr<std::atomic<std::uint8_t>[]> state_[3];  // per block of nodes_
   int leaves_[3];
   NodeColourCoder colour_;
 };

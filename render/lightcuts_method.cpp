@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <future>
 #include <thread>
 
 #include "gl/context.h"
@@ -16,26 +15,17 @@ using namespace gl::api;
 
 LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& lights,
                                  const GBuffer& gbuffer, bool distance)
-    : layout_(std::move(packed)),
-      distance_(distance),
-      width_(gbuffer.width()),
-      height_(gbuffer.height()) {
-  std::vector<std::uint32_t>& words = layout_.words;
+    : distance_(distance), width_(gbuffer.width()), height_(gbuffer.height()) {
+  std::vector<std::uint32_t>& words = packed.words;
   const std::size_t nodeWords = words.size();
   if (words.empty()) words.assign(4, 0u);  // no lights: keep the sampler complete
-  // The CPU's copy of the nodes is decoded on other threads while this one, the context's,
-  // uploads the words (both only read them): at 2^20 lights each takes a few tenths of a
-  // second.
-  std::future<std::unique_ptr<TileCutter>> cutter;
-  if (!distance) {
-    cutter = std::async(std::launch::async,
-                        [this, &lights] { return std::make_unique<TileCutter>(layout_, lights); });
-  }
-  // (A throw here waits for it: std::async's future does so as it goes.)
   nodes_ = gl::uploadTextureBuffer(words.data(), words.size() / 4, GL_RGBA32UI,
                                    "light trees of " + std::to_string(nodeWords) + " words");
-  if (cutter.valid()) tileCutter_ = cutter.get();
-  words = {};
+  std::copy(packed.base, packed.base + 3, layout_.base);
+  std::copy(packed.leaves, packed.leaves + 3, layout_.leaves);
+  layout_.colour = packed.colour;
+  // The tile cutter keeps the words, to decode the nodes its cuts reach.
+  if (!distance) tileCutter_ = std::make_unique<TileCutter>(std::move(packed), lights);
 
   if (tileCutter_) {  // sized once; each frame's cut numbers replace the last
     glBindTexture(GL_TEXTURE_2D, cutOfPixel_.id());

@@ -88,7 +88,7 @@ class LightcutsMethod {
   void cutTiles(const GBuffer& gbuffer, const View& view, bool specular,
                 const LightcutsSettings& settings, int tileSize) const;
 
-  PackedTrees layout_;  // bases, leaf counts, colour coding (the words are dropped after upload)
+  PackedTrees layout_;  // bases, leaf counts, colour coding (no words: the tile cutter's)
   gl::TextureBuffer nodes_;
   std::unique_ptr<TileCutter> tileCutter_;   // null for the distance criterion
   mutable std::unique_ptr<CellCuts> cells_;  // made by the first frame with keepCuts

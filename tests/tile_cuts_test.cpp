@@ -183,6 +183,39 @@ TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
 // but holds without it, is still shared: its pixels check the rule for themselves. With
 // 2,000 uniform lights, the total rule and at most 1,600 nodes, 538 of the 3,712 covered
 // pixels shared a cut before, and every pixel stays within its cut's bound.
+// The words of pixel i's shared cut in `c`: its header but the entries' offset, then its
+// entries (up to the next cut's, as TileCutter::cut lays them out in order); none if it has
+// no shared cut.
+std::vector<std::uint32_t> cutWords(const TileCuts& c, std::size_t i) {
+  const std::uint32_t cut = c.cutOfPixel[i];
+  if (cut == kNoSharedCut) return {};
+  const std::uint32_t* header = c.texels.data() + 8 * std::size_t(cut);
+  const std::size_t first = header[0];
+  const std::size_t end =
+      int(cut) + 1 < c.sharedCuts ? std::size_t(header[8]) : c.texels.size() / 4;
+  std::vector<std::uint32_t> words(header + 1, header + 8);
+  words.insert(words.end(), c.texels.begin() + std::ptrdiff_t(4 * first),
+               c.texels.begin() + std::ptrdiff_t(4 * end));
+  return words;
+}
+
+// Nodes are decoded as cuts first reach them, by whichever thread gets there first: a
+// fresh cutter cutting on four threads finds, pixel by pixel, the very cuts a fresh one
+// finds on one (which thread takes which square, and so the cuts' order, may differ).
+TEST(TileCuts, NodesDecodedOnFirstUseGiveTheSameCutsOnAnyNumberOfThreads) {
+  const SyntheticGBuffer g;
+  const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 3000, 11);
+  const PackedTrees packed = packLightTrees(buildLightTrees(lights));
+  const CutRule rule{0.02f, false, 1000};
+  const TileCuts one = TileCutter(packed, lights).cut(g.pixels(), 4, rule, 1);
+  const TileCuts four = TileCutter(packed, lights).cut(g.pixels(), 4, rule, 4);
+  EXPECT_GT(one.sharedCuts, 0);
+  EXPECT_EQ(one.sharedCuts, four.sharedCuts);
+  EXPECT_EQ(one.boundEvaluations, four.boundEvaluations);
+  for (std::size_t i = 0; i < one.cutOfPixel.size(); ++i)
+    ASSERT_EQ(cutWords(one, i), cutWords(four, i)) << "pixel " << i;
+}
+
 TEST(TileCuts, AFullCutAtTheFinestSizeIsSharedWhenItMeetsTheRuleWithoutTheMargin) {
   const Checked c = checkTotalRule(layoutLights(LightLayout::Uniform, 2000, 7), 0.02f, 4, 1600);
   EXPECT_GT(c.sharedPixels, 1000);
