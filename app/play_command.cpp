@@ -131,7 +131,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   const gl::Backend backend = gl::parseBackend(a.backend);
 
   const auto loadStart = Clock::now();
-  const BakedScene baked = loadAnyScene(a.scene, a.input);
+  BakedScene baked = loadAnyScene(a.scene, a.input);  // its trees go to the renderer
   const double loadMs = msSince(loadStart);
   for (const std::string& w : baked.scene.warnings)
     std::cerr << "manylight: " << a.scene << ": warning: " << w << "\n";

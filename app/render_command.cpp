@@ -41,11 +41,12 @@ std::future<LoadedScene> startLoading(const RenderArgs& a, const std::string& pa
 }
 
 // Renders and writes one scene; returns its stats. Throws Error.
+// The scene's baked trees, if any, go to the renderer.
 nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
-                         const std::string& scenePath, const LoadedScene& loaded,
+                         const std::string& scenePath, LoadedScene loaded,
                          const std::string& output, const gl::Context& context) {
   const auto start = Clock::now();
-  const BakedScene& baked = loaded.baked;
+  BakedScene& baked = loaded.baked;
   const Scene& scene = baked.scene;
   const double loadMs = loaded.loadMs;
   for (const std::string& w : scene.warnings)

@@ -22,7 +22,8 @@ struct RenderRequest {
   LightcutsSettings lightcuts;
   OctreeOptions octree;  // the octree method: how its octree is built (when it is built)
   // Lightcuts trees packed before for the scene's own lights (a baked scene); null: build.
-  const PackedTrees* prebuiltTrees = nullptr;
+  // The render takes them (they are left empty): at 2^20 lights they are 136 MB.
+  PackedTrees* prebuiltTrees = nullptr;
   // The same for the octree method's octree.
   const LinklessOctree* prebuiltOctree = nullptr;
   bool octreeStats = false;   // FrameSettings::octreeStats

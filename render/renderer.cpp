@@ -52,7 +52,8 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
       if (!baked.trees)
         throw Error(std::string(methodName(method)) + " needs the lights' baked trees");
       distance_ = method == Method::LightcutsDistance;
-      lightcuts_ = std::make_unique<LightcutsMethod>(*baked.trees, lights, gbuffer_, distance_);
+      lightcuts_ =
+          std::make_unique<LightcutsMethod>(std::move(*baked.trees), lights, gbuffer_, distance_);
     }
     glFinish();
     uploadMs_ =

@@ -65,7 +65,7 @@ struct FrameStats {
 // What the methods take baked for the lights (a baked file's, or built by prepareRenderer):
 // the light trees of the lightcuts methods, the linkless octree of the octree method.
 struct BakedLights {
-  const PackedTrees* trees = nullptr;
+  PackedTrees* trees = nullptr;  // taken by the renderer: left empty
   const LinklessOctree* octree = nullptr;
 };
 
