@@ -51,6 +51,10 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
     } else {
       if (!baked.trees)
         throw Error(std::string(methodName(method)) + " needs the lights' baked trees");
+      // A renderer takes the trees it is given: a second one given the same has none left.
+      const PackedTrees& t = *baked.trees;
+      if (t.words.empty() && (t.leaves[0] > 0 || t.leaves[1] > 0 || t.leaves[2] > 0))
+        throw Error("the lights' baked trees were already taken by another renderer");
       distance_ = method == Method::LightcutsDistance;
       lightcuts_ =
           std::make_unique<LightcutsMethod>(std::move(*baked.trees), lights, gbuffer_, distance_);

@@ -11,10 +11,10 @@
 
 namespace manylight {
 
-// A file's bytes in memory, writable, with zero bytes readable past size() up to
-// capacity(): the file mapped copy-on-write (its pages shared with the page cache, neither
-// zeroed nor copied; only pages written are copied), or a buffer of its own once it grows
-// past its capacity.
+// A file's bytes in memory, writable, with bytes readable past size() up to capacity()
+// (zero as read; a resize leaves what was there): the file mapped copy-on-write (its pages shared
+// with the page cache, neither zeroed nor copied; only pages written are copied), or a buffer of
+// its own once it grows past its capacity.
 class FileBytes {
  public:
   FileBytes() = default;

@@ -93,9 +93,12 @@ class SceneWalker {
       if (std::size_t(s) >= model_.scenes.size()) {
         throw SceneError("scene " + std::to_string(s) + " does not exist");
       }
-      // splitJson read the roots (and emptied them in what tinygltf read).
-      roots.assign(bulk_.sceneNodes.at(std::size_t(s)).begin(),
-                   bulk_.sceneNodes.at(std::size_t(s)).end());
+      // splitJson read the roots (and emptied them in what tinygltf read). It reads keys as
+      // written: a `scenes` key written with escapes is one it did not see.
+      if (std::size_t(s) >= bulk_.sceneNodes.size())
+        throw SceneError("scenes: written with escapes in its key, which is not supported");
+      roots.assign(bulk_.sceneNodes[std::size_t(s)].begin(),
+                   bulk_.sceneNodes[std::size_t(s)].end());
     } else {
       // No scenes: show every node that is nobody's child.
       std::vector<bool> isChild(bulk_.nodes.size(), false);

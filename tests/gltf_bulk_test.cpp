@@ -147,6 +147,21 @@ TEST(GltfBulk, LargeArraysReadOnTwoThreadsAsOnOne) {
   }
 }
 
+// Keys are read as written: a `scenes` key written with escapes, which tinygltf would read,
+// is refused in one line rather than shown without its roots.
+TEST(GltfBulk, AnEscapedScenesKeyIsRefused) {
+  const std::string path =
+      writeFile("escaped-scenes.gltf",
+                R"({"asset": {"version": "2.0"}, "nodes": [{}], "sc\u0065nes": [{"nodes": [0]}]})");
+  try {
+    loadGltf(path);
+    ADD_FAILURE() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              path + ": scenes: written with escapes in its key, which is not supported");
+  }
+}
+
 TEST(GltfBulk, TextThatIsNotJsonIsLeftToTinygltf) {
   EXPECT_FALSE(split("{ this is not json").parsed);
   EXPECT_FALSE(split(R"({"nodes": [{"extras": {"a": 56.0f}}]})").parsed);

@@ -179,10 +179,6 @@ TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
   }
 }
 
-// A 4×4 square (the finest) whose cut fills up before the rule holds with the CPU's margin,
-// but holds without it, is still shared: its pixels check the rule for themselves. With
-// 2,000 uniform lights, the total rule and at most 1,600 nodes, 538 of the 3,712 covered
-// pixels shared a cut before, and every pixel stays within its cut's bound.
 // The words of pixel i's shared cut in `c`: its header but the entries' offset, then its
 // entries (up to the next cut's, as TileCutter::cut lays them out in order); none if it has
 // no shared cut.
@@ -216,6 +212,10 @@ TEST(TileCuts, NodesDecodedOnFirstUseGiveTheSameCutsOnAnyNumberOfThreads) {
     ASSERT_EQ(cutWords(one, i), cutWords(four, i)) << "pixel " << i;
 }
 
+// A 4×4 square (the finest) whose cut fills up before the rule holds with the CPU's margin,
+// but holds without it, is still shared: its pixels check the rule for themselves. With
+// 2,000 uniform lights, the total rule and at most 1,600 nodes, 538 of the 3,712 covered
+// pixels shared a cut before, and every pixel stays within its cut's bound.
 TEST(TileCuts, AFullCutAtTheFinestSizeIsSharedWhenItMeetsTheRuleWithoutTheMargin) {
   const Checked c = checkTotalRule(layoutLights(LightLayout::Uniform, 2000, 7), 0.02f, 4, 1600);
   EXPECT_GT(c.sharedPixels, 1000);
