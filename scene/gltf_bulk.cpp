@@ -25,14 +25,9 @@ struct Span {
   std::size_t begin, end;
 };
 
-// Reads the array `v` element by element; `reserve` is told the count first.
+// Reads the array `a` element by element; `reserve` is told the count first.
 template <typename Reserve, typename Read>
-Span readArray(od::document& doc, od::value v, std::string_view json, const std::string& what,
-               const Reserve& reserve, const Read& read) {
-  const char* start = nullptr;
-  check(v.current_location().get(start));
-  od::array a;
-  check(v.get_array().get(a), [&] { return what + " is not an array"; });
+void readElements(od::array& a, const Reserve& reserve, const Read& read) {
   std::size_t count = 0;
   check(a.count_elements().get(count));
   reserve(count);
@@ -42,6 +37,17 @@ Span readArray(od::document& doc, od::value v, std::string_view json, const std:
     check(element.get(x));
     read(x, i++);
   }
+}
+
+// Reads the array `v` element by element (readElements); returns its span of `json`.
+template <typename Reserve, typename Read>
+Span readArray(od::document& doc, od::value v, std::string_view json, const std::string& what,
+               const Reserve& reserve, const Read& read) {
+  const char* start = nullptr;
+  check(v.current_location().get(start));
+  od::array a;
+  check(v.get_array().get(a), [&] { return what + " is not an array"; });
+  readElements(a, reserve, read);
   const Span s{std::size_t(start - json.data()), arrayEnd(doc, json)};
   if (s.end <= s.begin || json[s.begin] != '[') throw Syntax{simdjson::TAPE_ERROR};
   return s;
@@ -81,24 +87,21 @@ void readDeferred(std::string_view json, std::size_t capacity, const Deferred& d
           .get(doc));
   od::array a;
   check(doc.get_array().get(a));
-  std::size_t count = 0;
-  check(a.count_elements().get(count));
-  if (d.kind == Bulk::Nodes) {
-    out.nodes.clear();
-    out.children.clear();
-    out.matrices.clear();
-    out.nodes.reserve(count);
-  } else {
-    out.lights.clear();
-    out.otherTypes.clear();
-    out.lights.reserve(count);
-  }
-  std::size_t i = 0;
-  for (auto element : a) {
-    od::value x;
-    check(element.get(x));
-    (d.kind == Bulk::Nodes ? readNode : readLight)(x, i++, out);
-  }
+  const auto reserve = [&](std::size_t count) {
+    if (d.kind == Bulk::Nodes) {
+      out.nodes.clear();
+      out.children.clear();
+      out.matrices.clear();
+      out.nodes.reserve(count);
+    } else {
+      out.lights.clear();
+      out.otherTypes.clear();
+      out.lights.reserve(count);
+    }
+  };
+  readElements(a, reserve, [&](od::value x, std::size_t i) {
+    (d.kind == Bulk::Nodes ? readNode : readLight)(x, i, out);
+  });
 }
 
 // The deferred arrays of one kind, in order (a later one replaces an earlier one's records,
