@@ -11,7 +11,7 @@
 #include "bake/light_support.h"
 #include "bake/octree_lights.h"
 #include "bake/octree_surfaces.h"
-#include "bake/parallel.h"
+#include "base/parallel.h"
 
 namespace manylight {
 

@@ -81,7 +81,9 @@ double uniform(std::uint64_t seed, std::uint64_t index) {
   return double(z >> 11) * 0x1.0p-53;
 }
 
-LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double u) {
+// `cones`: the spot lights' tree, whose nodes bound their lights' directions; the other
+// trees' nodes keep the left child's axis and no spread, which nothing reads.
+LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double u, bool cones) {
   if (l.empty()) return r;
   if (r.empty()) return l;
   LightTreeNode n;
@@ -97,6 +99,8 @@ LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double 
   n.invRange2Max = std::max(l.invRange2Max, r.invRange2Max);
   n.axis = l.axis;
   n.spread = l.spread;
+  n.outerAngle = std::max(l.outerAngle, r.outerAngle);
+  if (!cones) return n;
   mergeCones(n.axis, n.spread, r.axis, r.spread);
   // The axis is stored in float: widen the spread until it holds both children's cones as
   // stored, measured in double (plus a float step), so the bound stays conservative.
@@ -107,7 +111,6 @@ LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double 
     n.spread =
         std::max(n.spread, std::nextafter(float(std::min(angle + double(c->spread), kPi)), 4.0f));
   }
-  n.outerAngle = std::max(l.outerAngle, r.outerAngle);
   return n;
 }
 
@@ -203,6 +206,7 @@ struct Builder {
   std::vector<LightTreeNode>* nodes;
   Split split;
   Splitter axes;
+  bool cones;  // spot lights: nodes bound their directions
   std::uint64_t seed;
 
   void chooseAndPartition(int lo, int mid, int hi) {
@@ -256,7 +260,7 @@ struct Builder {
       build(left, capacity / 2, lo, mid, depth + 1);
       build(right, capacity / 2, mid, hi, depth + 1);
     }
-    node = mergeNodes((*nodes)[left], (*nodes)[right], uniform(seed, std::uint64_t(index)));
+    node = mergeNodes((*nodes)[left], (*nodes)[right], uniform(seed, std::uint64_t(index)), cones);
   }
 };
 
@@ -299,6 +303,7 @@ std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights,
     b.nodes = &tree.nodes;
     b.split = options.split;
     b.axes.oriented = tree.type == LightType::Spot && options.coneWeight > 0.0;
+    b.cones = tree.type == LightType::Spot;
     b.axes.c = c * options.coneWeight;
     b.seed = options.seed ^ std::uint64_t(t);
     b.build(0, tree.leafCount, 0, count, 0);
@@ -345,7 +350,8 @@ bool refitLightTrees(std::vector<LightTree>& trees, const std::vector<Light>& li
       const std::size_t l = std::size_t(2 * i + 1), r = l + 1;
       if (!dirty[t][l] && !dirty[t][r]) continue;
       tree.nodes[std::size_t(i)] =
-          mergeNodes(tree.nodes[l], tree.nodes[r], uniform(seed, std::uint64_t(i)));
+          mergeNodes(tree.nodes[l], tree.nodes[r], uniform(seed, std::uint64_t(i)),
+                     tree.type == LightType::Spot);
       dirty[t][std::size_t(i)] = 1;
     }
   }

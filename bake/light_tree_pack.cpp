@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
+#include <utility>
 
 #include "bake/light_tree_layout.h"
-#include "bake/parallel.h"
+#include "base/parallel.h"
 
 namespace manylight {
 namespace {
@@ -76,12 +77,18 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
     packed.leaves[t] = tree.leafCount;
     const std::size_t stride = t == 2 ? layout::kSpotNodeWords : layout::kNodeWords;
     std::uint32_t* const out = &packed.words[next];
-    // Nodes write disjoint words: shares of them are packed on threads at once.
-    runOnShares(sharesOf(tree.nodes.size(), kNodesPerThread), tree.nodes.size(),
-                [&](int, std::size_t from, std::size_t to) {
-                  for (std::size_t i = from; i < to; ++i)
-                    packNode(tree, int(i), t, packed.colour, out + stride * i);
-                });
+    // Nodes write disjoint words: shares of them are packed on threads at once. Internal
+    // nodes (which encode a colour) and leaves are shared apart, so that each thread gets
+    // as many of the costly ones.
+    const std::size_t firstLeaf = std::size_t(tree.firstLeaf());
+    for (const auto& [begin, end] :
+         {std::pair{std::size_t(0), firstLeaf}, std::pair{firstLeaf, tree.nodes.size()}}) {
+      runOnShares(sharesOf(end - begin, kNodesPerThread), end - begin,
+                  [&](int, std::size_t from, std::size_t to) {
+                    for (std::size_t i = begin + from; i < begin + to; ++i)
+                      packNode(tree, int(i), t, packed.colour, out + stride * i);
+                  });
+    }
     next += stride * tree.nodes.size();
   }
   // The coder measured on the words just packed, in decodedIntensities' order.

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "bake/parallel.h"
 #include "bake/spatial_hash.h"
+#include "base/parallel.h"
 
 namespace manylight {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bake/parallel.h"
+#include "base/parallel.h"
 #include "scene/srgb.h"
 
 namespace manylight {
@@ -74,11 +74,13 @@ std::uint32_t encodeFitted(glm::dvec3 v, const PowerFit& fit) {
   return word | codes[0] | codes[1] << 8 | codes[2] << 16;
 }
 
-double percentile99(std::vector<double>& v) {
-  if (v.empty()) return 0.0;
-  const std::size_t k = std::min(v.size() - 1, std::size_t(std::ceil(0.99 * double(v.size()))) - 1);
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
-  return v[k];
+// The 99th percentile of `v` less its `skipped` values that lie below all the others.
+double percentile99(std::vector<double>& v, std::size_t skipped) {
+  const std::size_t n = v.size() - skipped;
+  if (n == 0) return 0.0;
+  const std::size_t k = std::min(n - 1, std::size_t(std::ceil(0.99 * double(n))) - 1);
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(skipped + k), v.end());
+  return v[skipped + k];
 }
 
 }  // namespace
@@ -132,41 +134,49 @@ NodeColourCoder::NodeColourCoder(NodeColourCoding coding, const std::vector<glm:
 
 void NodeColourCoder::measure(const std::vector<glm::vec3>& colours,
                               const std::vector<std::uint32_t>& words) {
-  // Measured on a few threads, each over its share of the colours, in order: the same
-  // figures as one thread's.
+  // Each colour's relative errors at its own index, −1 for a black colour (which counts in
+  // no figure), measured on a few threads, each over its share: the same figures as one
+  // thread's.
   struct Share {
-    std::vector<double> errors[3];
     double maxError[3] = {0, 0, 0};
     double eta = 0.0;
+    std::size_t black = 0;
   };
+  std::vector<double> errors[3];
+  for (std::vector<double>& e : errors) e.resize(colours.size());
   std::vector<Share> shares(std::size_t(sharesOf(colours.size(), kColoursPerThread)));
   runOnShares(int(shares.size()), colours.size(), [&](int t, std::size_t from, std::size_t to) {
     Share& share = shares[std::size_t(t)];
-    for (auto& e : share.errors) e.reserve(to - from);
     for (std::size_t i = from; i < to; ++i) {
       const glm::vec3& c = colours[i];
       const float m = largest(c);
-      if (!(m > 0.0f)) continue;
+      if (!(m > 0.0f)) {
+        for (std::vector<double>& e : errors) e[i] = -1.0;
+        ++share.black;
+        continue;
+      }
       const glm::dvec3 d = glm::dvec3(decode(words[i]));
       const double dm = std::max(d.x, std::max(d.y, d.z));
       for (int k = 0; k < 3; ++k) {
         const double e = std::abs(d[k] - double(c[k]));
-        share.errors[k].push_back(e / m);
+        errors[k][i] = e / m;
         share.maxError[k] = std::max(share.maxError[k], e / m);
         share.eta = std::max(share.eta, std::max(e - slackFloor, 0.0) / dm);
       }
     }
   });
-  std::vector<double> errors[3];
   double eta = 0.0;
-  for (Share& share : shares) {
-    for (int k = 0; k < 3; ++k) {
-      errors[k].insert(errors[k].end(), share.errors[k].begin(), share.errors[k].end());
-      maxError[k] = std::max(maxError[k], share.maxError[k]);
-    }
+  std::size_t black = 0;
+  for (const Share& share : shares) {
+    for (int k = 0; k < 3; ++k) maxError[k] = std::max(maxError[k], share.maxError[k]);
     eta = std::max(eta, share.eta);
+    black += share.black;
   }
-  for (int k = 0; k < 3; ++k) p99Error[k] = percentile99(errors[k]);
+  // The three channels' selections at once, when large.
+  const int threads = colours.size() >= kColoursPerThread ? 3 : 1;
+  runOnThreads(threads, [&](int k) {
+    for (int c = k; c < 3; c += threads) p99Error[c] = percentile99(errors[c], black);
+  });
   // The shader decodes in single precision (pow, exp2): a few units in the last place.
   slack = eta * (1.0 + 1e-3) + 1e-5;
 }

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "bake/light_pack.h"
-#include "bake/parallel.h"
+#include "base/parallel.h"
 
 namespace manylight::octree {
 

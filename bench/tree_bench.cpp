@@ -22,6 +22,19 @@ void buildTrees(benchmark::State& state, Split split, bool mixed) {
   state.counters["lights"] = double(lights.size());
 }
 
+// The packing alone (node colours encoded and measured), of trees built once.
+void packTrees(benchmark::State& state) {
+  const std::vector<Light> lights =
+      scatteredLights(int(state.range(0)), true, 3, {100.0f, 10.0f, 100.0f});
+  const std::vector<LightTree> trees = buildLightTrees(lights, TreeOptions{});
+  for (auto _ : state) {
+    PackedTrees packed = packLightTrees(trees);
+    benchmark::DoNotOptimize(packed.words.data());
+  }
+  state.counters["lights"] = double(lights.size());
+}
+
+BENCHMARK(packTrees)->Arg(1 << 20)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(buildTrees, MetricPoint, Split::Metric, false)
     ->Arg(1 << 16)
     ->Arg(1 << 20)

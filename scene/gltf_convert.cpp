@@ -257,7 +257,8 @@ Camera Converter::camera(int index) const {
 Light Converter::light(int index, const glm::mat4& world) const {
   checkIndex(index, bulk_.lights, "light");
   const LightRecord& src = bulk_.lights[std::size_t(index)];
-  const std::string where = "light " + str(index);
+  // Built only for a message: a million lights are converted twice each.
+  const auto where = [index] { return "light " + str(index); };
   Light l;
   switch (src.type) {
     case PunctualType::Point:
@@ -270,10 +271,11 @@ Light Converter::light(int index, const glm::mat4& world) const {
       l.type = LightType::Directional;
       break;
     default:
-      throw SceneError(where + ": unknown type '" + bulk_.otherTypes.at(std::size_t(index)) + "'");
+      throw SceneError(where() + ": unknown type '" + bulk_.otherTypes.at(std::size_t(index)) +
+                       "'");
   }
   if (src.colorCount != 0 && src.colorCount != 3) {
-    throw SceneError(where + ": color must have 3 components, got " +
+    throw SceneError(where() + ": color must have 3 components, got " +
                      std::to_string(src.colorCount));
   }
   l.colour =
@@ -282,21 +284,21 @@ Light Converter::light(int index, const glm::mat4& world) const {
   l.range = float(src.range);
   if (!std::isfinite(l.intensity) || l.intensity < 0.0f || !(l.colour == l.colour) ||
       glm::any(glm::lessThan(l.colour, glm::vec3(0.0f)))) {
-    throw SceneError(where + ": colour and intensity must be finite and not negative");
+    throw SceneError(where() + ": colour and intensity must be finite and not negative");
   }
   if (!(l.range >= 0.0f) || std::isinf(l.range)) {
-    throw SceneError(where + ": range must be a positive number");
+    throw SceneError(where() + ": range must be a positive number");
   }
   if (l.type == LightType::Spot) {
     l.innerConeAngle = float(src.innerConeAngle);
     l.outerConeAngle = float(src.outerConeAngle);
     if (!(src.innerConeAngle >= 0.0 && src.innerConeAngle < src.outerConeAngle &&
           src.outerConeAngle <= kHalfPi)) {
-      throw SceneError(where + ": spot cone angles must satisfy 0 <= inner < outer <= pi/2");
+      throw SceneError(where() + ": spot cone angles must satisfy 0 <= inner < outer <= pi/2");
     }
   }
   if (!placeLight(l, world)) {
-    throw SceneError(where + ": the node's transform collapses the light direction");
+    throw SceneError(where() + ": the node's transform collapses the light direction");
   }
   return l;
 }

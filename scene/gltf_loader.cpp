@@ -6,7 +6,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <glm/gtc/type_ptr.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -20,6 +19,7 @@
 #include "scene/gltf_extensions.h"
 #include "scene/gltf_parse.h"
 #include "scene/image_decode.h"
+#include "scene/scene_walker.h"
 
 namespace manylight {
 namespace {
@@ -78,152 +78,6 @@ bool decodeImageForTinygltf(tinygltf::Image* image, const int index, std::string
     return false;
   }
 }
-
-// Walks the node hierarchy of the default scene, placing meshes, lights and cameras.
-class SceneWalker {
- public:
-  SceneWalker(const tinygltf::Model& model, const gltf::BulkArrays& bulk, Scene& scene,
-              gltf::Converter& convert, const LoadOptions& options)
-      : model_(model), bulk_(bulk), scene_(scene), convert_(convert), options_(options) {}
-
-  void walk() {
-    std::vector<int> roots;
-    if (!model_.scenes.empty()) {
-      int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-      if (std::size_t(s) >= model_.scenes.size()) {
-        throw SceneError("scene " + std::to_string(s) + " does not exist");
-      }
-      // splitJson read the roots (and emptied them in what tinygltf read). It reads keys as
-      // written: a `scenes` key written with escapes is one it did not see.
-      if (std::size_t(s) >= bulk_.sceneNodes.size())
-        throw SceneError("scenes: written with escapes in its key, which is not supported");
-      roots.assign(bulk_.sceneNodes[std::size_t(s)].begin(),
-                   bulk_.sceneNodes[std::size_t(s)].end());
-    } else {
-      // No scenes: show every node that is nobody's child.
-      std::vector<bool> isChild(bulk_.nodes.size(), false);
-      for (std::int32_t c : bulk_.children) {
-        if (c >= 0 && std::size_t(c) < isChild.size()) isChild[std::size_t(c)] = true;
-      }
-      for (std::size_t i = 0; i < isChild.size(); ++i) {
-        if (!isChild[i]) roots.push_back(int(i));
-      }
-    }
-    parent_.assign(bulk_.nodes.size(), -1);
-    for (std::size_t n = 0; n < bulk_.nodes.size(); ++n) {
-      const gltf::NodeRecord& node = bulk_.nodes[n];
-      for (const std::int32_t* c = bulk_.childrenBegin(node); c != bulk_.childrenEnd(node); ++c) {
-        if (*c >= 0 && std::size_t(*c) < parent_.size()) parent_[std::size_t(*c)] = int(n);
-      }
-    }
-    // At most one light a node, within the budget: stored without regrowing.
-    std::size_t lightNodes = 0;
-    for (const gltf::NodeRecord& n : bulk_.nodes) lightNodes += n.light >= 0 ? 1 : 0;
-    lightNodes = std::min(lightNodes, options_.lightBudget);
-    scene_.lights.reserve(scene_.lights.size() + lightNodes);
-    lightSources_.reserve(lightNodes);
-    cameraPlaced_.assign(model_.cameras.size(), false);
-    scene_.cameras.assign(model_.cameras.size(), Camera{});
-    for (std::size_t i = 0; i < model_.cameras.size(); ++i) {
-      scene_.cameras[i] = convert_.camera(int(i));
-    }
-    // Iterative depth-first walk. checkStructure has ruled out cycles and second parents, so
-    // a node met twice is listed twice among the roots, or is both a root and a child.
-    std::vector<bool> visited(bulk_.nodes.size(), false);
-    std::vector<Item> stack;
-    // Root by root (a scene of a million lights may list each as a root), each depth first.
-    for (const int root : roots) {
-      stack.push_back({root, glm::mat4(1.0f)});
-      walkFrom(stack, visited);
-    }
-    if (lightsSeen_ > options_.lightBudget) {
-      throw SceneError(std::to_string(lightsSeen_) + " lights exceed the light budget of " +
-                       std::to_string(options_.lightBudget) + " (--light-budget)");
-    }
-    for (std::size_t i = 0; i < cameraPlaced_.size(); ++i) {
-      if (!cameraPlaced_[i]) {
-        scene_.warnings.push_back("camera " + std::to_string(i) +
-                                  " is used by no node of the scene; placed at the origin");
-      }
-    }
-  }
-
-  // Where each of Scene::lights comes from, in order.
-  const std::vector<gltf::LightSource>& lightSources() const { return lightSources_; }
-
- private:
-  struct Item {
-    int node;
-    glm::mat4 parent;
-  };
-
-  // Places the nodes below the one on `stack` (its only item), depth first.
-  void walkFrom(std::vector<Item>& stack, std::vector<bool>& visited) {
-    while (!stack.empty()) {
-      const Item item = stack.back();
-      stack.pop_back();
-      if (item.node < 0 || std::size_t(item.node) >= bulk_.nodes.size()) {
-        throw SceneError("node " + std::to_string(item.node) + " does not exist");
-      }
-      if (visited[item.node]) {
-        throw SceneError("node " + std::to_string(item.node) +
-                         " is reached twice (a scene root listed twice, or also a child)");
-      }
-      visited[item.node] = true;
-      const gltf::NodeRecord& node = bulk_.nodes[std::size_t(item.node)];
-      const glm::mat4 world = item.parent * gltf::localTransform(bulk_, node);
-      place(item.node, node, world);
-      for (const std::int32_t* c = bulk_.childrenEnd(node); c != bulk_.childrenBegin(node);) {
-        stack.push_back({*--c, world});
-      }
-    }
-  }
-
-  void place(int index, const gltf::NodeRecord& node, const glm::mat4& world) {
-    const auto where = [index] { return "node " + std::to_string(index); };
-    for (int i = 0; i < 16; ++i) {
-      if (!std::isfinite(glm::value_ptr(world)[i])) {
-        throw SceneError(where() + ": transform is not finite");
-      }
-    }
-    if (node.mesh >= 0) {
-      scene_.instances.push_back({convert_.mesh(node.mesh), world});
-    } else if (node.mesh < -1) {
-      throw SceneError(where() + ": mesh " + std::to_string(node.mesh) + " does not exist");
-    }
-    if (node.camera >= 0) {
-      if (std::size_t(node.camera) >= model_.cameras.size()) {
-        throw SceneError(where() + ": camera " + std::to_string(node.camera) + " does not exist");
-      }
-      if (!cameraPlaced_[node.camera]) {
-        cameraPlaced_[node.camera] = true;
-        scene_.cameras[node.camera].world = gltf::withoutScale(world);
-        scene_.cameras[node.camera].animation =
-            gltf::cameraAnimation(model_, bulk_, parent_, index);
-      }
-    }
-    const int light = node.light;
-    if (light >= 0) {
-      // Past the budget, lights are only counted (nothing more is stored), for the message.
-      if (++lightsSeen_ <= options_.lightBudget) {
-        scene_.lights.push_back(convert_.light(light, world));
-        lightSources_.push_back({index, light});
-      }
-    } else if (light < -1) {
-      throw SceneError(where() + ": light " + std::to_string(light) + " does not exist");
-    }
-  }
-
-  const tinygltf::Model& model_;
-  const gltf::BulkArrays& bulk_;
-  Scene& scene_;
-  gltf::Converter& convert_;
-  const LoadOptions& options_;
-  std::vector<bool> cameraPlaced_;
-  std::vector<int> parent_;
-  std::size_t lightsSeen_ = 0;
-  std::vector<gltf::LightSource> lightSources_;
-};
 
 // Throws when the meshes hold more triangles than `limit`, from the accessor counts alone.
 void checkTriangleCount(const tinygltf::Model& model, std::int64_t limit) {
@@ -375,7 +229,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     checkTriangleCount(model, options.maxTriangles);
     gltf::Converter convert(model, bulk, scene, glm::radians(options.creaseAngleDegrees));
     checkStructure(model, bulk, convert);
-    SceneWalker walker(model, bulk, scene, convert, options);
+    gltf::SceneWalker walker(model, bulk, scene, convert, options);
     walker.walk();
     scene.lightAnimation = gltf::lightAnimation(model, bulk, walker.lightSources());
   } catch (const SceneError& e) {
