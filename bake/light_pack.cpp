@@ -4,20 +4,25 @@
 #include <cmath>
 
 #include "bake/light_texture_layout.h"
+#include "base/parallel.h"
 #include "scene/shading_model.h"
 
 namespace manylight {
 
+// One pass counting the types, one placing each light (a counting sort, stable).
 LightOrder lightOrder(const std::vector<Light>& lights) {
+  const auto rank = [](LightType t) {
+    return t == LightType::Directional ? 0 : t == LightType::Point ? 1 : 2;
+  };
+  std::size_t counts[3] = {0, 0, 0};
+  for (const Light& l : lights) ++counts[rank(l.type)];
   LightOrder order;
-  order.scene.reserve(lights.size());
-  for (LightType type : {LightType::Directional, LightType::Point, LightType::Spot}) {
-    if (type == LightType::Point) order.pointStart = int(order.scene.size());
-    if (type == LightType::Spot) order.spotStart = int(order.scene.size());
-    for (std::size_t i = 0; i < lights.size(); ++i) {
-      if (lights[i].type == type) order.scene.push_back(int(i));
-    }
-  }
+  order.pointStart = int(counts[0]);
+  order.spotStart = int(counts[0] + counts[1]);
+  order.scene.resize(counts[0] + counts[1] + counts[2]);
+  std::size_t next[3] = {0, counts[0], counts[0] + counts[1]};
+  for (std::size_t i = 0; i < lights.size(); ++i)
+    order.scene[next[rank(lights[i].type)]++] = int(i);
   return order;
 }
 
@@ -29,6 +34,27 @@ SpotConeTerms spotConeTerms(const Light& l) {
   return {float(s), float(-cosOuter * s)};
 }
 
+namespace {
+
+// One light's texels at `t` (bake/light_texture_layout.h).
+void packLightTexel(const Light& l, float* t) {
+  const glm::vec3 radiant = l.colour * l.intensity;
+  if (l.type == LightType::Directional) {
+    t[0] = -l.direction.x, t[1] = -l.direction.y, t[2] = -l.direction.z;
+    t[3] = layout::kDirectionalMarker;
+  } else {
+    t[0] = l.position.x, t[1] = l.position.y, t[2] = l.position.z;
+    t[3] = l.range > 0.0f && std::isfinite(l.range) ? 1.0f / (l.range * l.range) : 0.0f;
+  }
+  if (l.type == LightType::Spot) t[4] = l.direction.x, t[5] = l.direction.y, t[6] = l.direction.z;
+  const SpotConeTerms cone = spotConeTerms(l);
+  t[7] = cone.scale;
+  t[8] = radiant.r, t[9] = radiant.g, t[10] = radiant.b;
+  t[11] = cone.offset;
+}
+
+}  // namespace
+
 PackedLights packLights(const std::vector<Light>& lights) {
   PackedLights packed;
   const LightOrder order = lightOrder(lights);
@@ -38,26 +64,17 @@ PackedLights packLights(const std::vector<Light>& lights) {
   return packed;
 }
 
+// Fewer lights than this a thread are packed on one.
+constexpr std::size_t kLightsPerThread = 65536;
+
 std::vector<float> packLightTexels(const std::vector<Light>& lights,
                                    const std::vector<int>& order) {
   std::vector<float> out(order.size() * layout::kFloatsPerLight, 0.0f);
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const Light& l = lights[std::size_t(order[i])];
-    float* t = &out[i * layout::kFloatsPerLight];
-    const glm::vec3 radiant = l.colour * l.intensity;
-    if (l.type == LightType::Directional) {
-      t[0] = -l.direction.x, t[1] = -l.direction.y, t[2] = -l.direction.z;
-      t[3] = layout::kDirectionalMarker;
-    } else {
-      t[0] = l.position.x, t[1] = l.position.y, t[2] = l.position.z;
-      t[3] = l.range > 0.0f && std::isfinite(l.range) ? 1.0f / (l.range * l.range) : 0.0f;
-    }
-    if (l.type == LightType::Spot) t[4] = l.direction.x, t[5] = l.direction.y, t[6] = l.direction.z;
-    const SpotConeTerms cone = spotConeTerms(l);
-    t[7] = cone.scale;
-    t[8] = radiant.r, t[9] = radiant.g, t[10] = radiant.b;
-    t[11] = cone.offset;
-  }
+  runOnShares(sharesOf(order.size(), kLightsPerThread), order.size(),
+              [&](int, std::size_t from, std::size_t to) {
+                for (std::size_t i = from; i < to; ++i)
+                  packLightTexel(lights[std::size_t(order[i])], &out[i * layout::kFloatsPerLight]);
+              });
   return out;
 }
 
