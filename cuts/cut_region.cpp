@@ -72,6 +72,7 @@ RegionCut TileCutter::cutRegion(CutWorkspace& work, const ShadingRegion& g, cons
     cut.farCheck = seed->farCheck;
     cut.farLobeCheck = seed->farLobeCheck;
     cut.farLobeSpread = seed->farLobeSpread;
+    cut.farRemainders = seed->farRemainders;
     const glm::vec3 farSum = cut.far.irradianceAtCentre(g.axis) / kPi;
     cut.sum += g.lobes.on ? weigh(g.lobes, farSum, cut.far.specular()) : farSum;
     if (rule.total)
@@ -215,7 +216,10 @@ void TileCutter::foldEntries(Cut& cut) const {
   } else {
     // The folded entries' lobes err together, each by at most its spread: their sum is one
     // more bound in the check (a node's, to the rule), and stays within kLobeFold of the
-    // target; the entries with the least spread fold first.
+    // target; the entries with the least spread fold first. Their remainders T err together
+    // where the entries lie the same way from the group (many lights at one point, all of
+    // one sign): the far field's entries in each bin of directions (farBin) count as one
+    // node, their summed T within the target.
     if (lobes.on) {
       auto spread = [&](const Foldable& f) {
         return maxOf(lobes.specular * work.items[std::size_t(f.item)].lobeSpread);
@@ -231,14 +235,21 @@ void TileCutter::foldEntries(Cut& cut) const {
       const glm::vec3 b = it.error + f.t;
       const glm::vec3 w = lobes.on ? weigh(lobes, b, it.lobeError) : b;
       if (maxOf(w) > target) continue;
+      const Node& n = node(it.tree, it.index);
+      glm::vec3& binSum =
+          cut.farRemainders[farBin(it.tree == 0 ? n.repPoint : n.repPoint - cut.terms.centre)];
+      const glm::vec3 remainder = binSum + f.t;
+      if (maxOf(lobes.on ? lobes.albedo * remainder : remainder) > target) continue;
       const glm::vec3 spread = cut.farLobeSpread + it.lobeSpread;
       if (lobes.on && maxOf(lobes.specular * spread) > kLobeFold * target) break;
       join(false, result.check, result.lobeCheck, b, it.lobeError);
       join(false, cut.farCheck, cut.farLobeCheck, b, it.lobeError);
       cut.farLobeSpread = spread;
+      binSum = remainder;
       work.shape[std::size_t(f.item)] = kFolded;
     }
     result.lobeCheck = glm::max(result.lobeCheck, cut.farLobeSpread);
+    for (const glm::vec3& binSum : cut.farRemainders) result.check = glm::max(result.check, binSum);
   }
 }
 
@@ -318,6 +329,7 @@ void TileCutter::emit(Cut& cut, std::vector<std::uint32_t>& entries, CutSeed* ne
     next->farCheck = cut.farCheck;
     next->farLobeCheck = cut.farLobeCheck;
     next->farLobeSpread = cut.farLobeSpread;
+    next->farRemainders = cut.farRemainders;
     return;
   }
   if (result.lobes) {  // TileCuts' two texels of a cut with lobes

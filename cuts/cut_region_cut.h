@@ -50,6 +50,7 @@ struct TileCutter::Cut {
   // the entries folded into it.
   FarField far;
   glm::vec3 farCheck{0.0f}, farLobeCheck{0.0f}, farLobeSpread{0.0f};
+  FarRemainders farRemainders{};  // node rule: its entries' remainders T, summed by bin
   // Nodes wait here for their items, and are evaluated kLanes at once (cuts/node_lanes.h),
   // then added in the order they came.
   struct Waiting {

@@ -51,6 +51,8 @@
 // cut found so far) the quarter starts over from the roots. A quarter
 // whose seed holds starts from a cut close to its own and evaluates far fewer node bounds;
 // the seeds that do not hold lie where cuts are large anyway (object edges, dim undersides).
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -138,6 +140,24 @@ struct RegionCut {
   void writeTexels(std::size_t cut, const std::uint32_t* words, std::size_t count,
                    std::size_t& next, std::uint32_t* texels) const;
 };
+// Under the node rule, the far field's entries are binned by their direction from the
+// group (towards a point or spot light's representative, a directional light's direction):
+// a cube's face, then kFarSplit × kFarSplit over the face. The summed remainders T of a bin's
+// entries are one node's bound: entries that lie the same way err the same way.
+inline constexpr int kFarSplit = 6;
+inline constexpr int kFarBins = 6 * kFarSplit * kFarSplit;
+using FarRemainders = std::array<glm::vec3, kFarBins>;
+inline int farBin(glm::vec3 v) {
+  const glm::vec3 a = glm::abs(v);
+  const int axis = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
+  if (!(a[axis] > 0.0f)) return 0;
+  const auto cell = [&](float c) {
+    return std::clamp(int((c / a[axis] + 1.0f) * 0.5f * kFarSplit), 0, kFarSplit - 1);
+  };
+  return ((2 * axis + (v[axis] < 0.0f ? 1 : 0)) * kFarSplit + cell(v[(axis + 1) % 3])) * kFarSplit +
+         cell(v[(axis + 2) % 3]);
+}
+
 // A cut found for a larger group of pixels, from which the cut of a smaller group inside it
 // starts (TileCutter::cut): the entries it did not fold, and its far field with the bound
 // of the entries folded into it (largest under the node rule, sum under the total rule).
@@ -151,6 +171,7 @@ struct CutSeed {
   glm::vec3 farCheck{0.0f};
   glm::vec3 farLobeCheck{0.0f};   // the same per unit specular colour
   glm::vec3 farLobeSpread{0.0f};  // node rule: the sum of its entries' lobe spreads
+  FarRemainders farRemainders{};  // node rule: its entries' remainders T, summed by bin
 };
 
 // A group whose cut would exceed the maximum is split into its surfaces while its normals

@@ -105,13 +105,13 @@ const Case kCases[] = {
     // name                  layout                       count  specular
     //   node rule: worst, p99, mean, average cut        distance criterion: the same
     {"uniform_4096",           LightLayout::Uniform,         4096, false,
-     {0.0426, 0.0238, 0.00684, 593},  {0.0284, 0.0154, 0.00515, 668}},
+     {0.0426, 0.0204, 0.00596, 593},  {0.0284, 0.0154, 0.00515, 668}},
     {"clustered_4096",         LightLayout::Clustered,       4096, false,
-     {0.186, 0.0552, 0.00797, 416},   {0.293, 0.131, 0.0165, 63.2}},
+     {0.0307, 0.00876, 0.00184, 416}, {0.293, 0.131, 0.0165, 63.2}},
     {"coincident_1000",        LightLayout::Coincident,      1000, false,
-     {0.327, 0.151, 0.0146, 500},    {0.000906, 0.000906, 0.000789, 1}},
+     {0.00755, 0.00334, 0.000494, 502}, {0.000906, 0.000906, 0.000789, 1}},
     {"wide_intensities_2000",  LightLayout::WideIntensities, 2000, false,
-     {0.0338, 0.0181, 0.00429, 455},  {0.134, 0.0229, 0.00615, 488}},
+     {0.0213, 0.0139, 0.00358, 455},  {0.134, 0.0229, 0.00615, 488}},
     {"far_1000",               LightLayout::Far,             1000, false,
      {0.0195, 0.00673, 0.00153, 488}, {0.620, 0.0380, 0.0112, 120}},
     {"mixed_3000",             LightLayout::Mixed,           3000, false,
@@ -123,15 +123,15 @@ const Case kCases[] = {
     {"count_3",                LightLayout::Mixed,           3,    false,
      {0, 0, 0, 2.48},             {2.20e-07, 1.56e-07, 4.17e-08, 3}},
     {"count_1023",             LightLayout::Uniform,         1023, false,
-     {0.0766, 0.0349, 0.00582, 546},  {0.0639, 0.0224, 0.00746, 325}},
+     {0.0282, 0.0199, 0.00410, 546},  {0.0639, 0.0224, 0.00746, 325}},
     {"count_1025",             LightLayout::Uniform,         1025, false,
-     {0.0776, 0.0354, 0.00659, 546},  {0.0537, 0.0246, 0.00797, 324}},
+     {0.0400, 0.0224, 0.00473, 546},  {0.0537, 0.0246, 0.00797, 324}},
     {"count_prime_1009",       LightLayout::Mixed,           1009, false,
      {0.0499, 0.0267, 0.00714, 428},  {0.122, 0.0973, 0.032, 417}},
     {"mixed_specular_2000",    LightLayout::Mixed,           2000, true,
      {0.0584, 0.0387, 0.0133, 548},  {0.180, 0.0555, 0.0192, 654}},
     {"eight_bit_colours_4096", LightLayout::EightBitColours, 4096, false,
-     {0.0429, 0.0242, 0.0081, 608},  {0.182, 0.0270, 0.00972, 675}},
+     {0.0361, 0.0216, 0.00758, 608},  {0.182, 0.0270, 0.00972, 675}},
 };
 // clang-format on
 
@@ -243,7 +243,13 @@ TEST_P(Lightcuts, TotalRuleHoldsWithFittedNodeColours) {
 }
 
 TEST_P(Lightcuts, NodeRuleErrorsStayUnderTheirCeilings) {
-  expectWithinCeilings(keep(render(Method::Lightcuts, ErrorMode::Node)).errors, GetParam().node);
+  const Errors& e = keep(render(Method::Lightcuts, ErrorMode::Node)).errors;
+  expectWithinCeilings(e, GetParam().node);
+  // Lights packed together (clusters, one point) were where the node rule's errors added up,
+  // to 9–16 ε (the far field's remainders: tile_cuts.h's farBin). They stay within 3 ε.
+  const LightLayout layout = GetParam().layout;
+  if (layout == LightLayout::Clustered || layout == LightLayout::Coincident)
+    EXPECT_LE(e.worst, 3.0 * kEpsilon);
 }
 
 TEST_P(Lightcuts, DistanceCriterionErrorsStayUnderTheirCeilings) {
