@@ -128,6 +128,7 @@ struct RenderArgs {
   std::string output, outDir, format = "png", shard, size = "640x480", backend = "auto";
   std::string ambient, statsPath;  // ambient empty: 0, or the default rig's
   std::string aov;                 // empty: the lit image
+  std::string maxCutMask;          // lightcuts: where cuts reached the maximum (one scene)
   std::string exposure = "auto", toneMap = "pbr-neutral";
   MethodArgs lighting{"auto"};
   int camera = -1;

@@ -69,6 +69,9 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& r) {
                    "Write this material channel instead of the lit image, encoded as the glTF "
                    "Sample Viewer's debug output of that name (see the README)")
       ->check(CLI::IsMember(aovNames()));
+  render->add_option("--max-cut-mask", r.maxCutMask,
+                     "Also write an image (.png or .exr) that is white where a pixel's cut "
+                     "reached --max-cut before its error rule held, black elsewhere (one scene)");
   addSceneOptions(render, r.input);
   render->add_option("--stats", r.statsPath, "Write timings and facts about the render as JSON");
   render->add_flag("-v,--verbose", r.verbose,

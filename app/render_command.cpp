@@ -40,6 +40,21 @@ std::future<LoadedScene> startLoading(const RenderArgs& a, const std::string& pa
   });
 }
 
+// The mask of `cuts`' pixels whose cut reached the maximum before its rule held: 1 there, 0
+// elsewhere (everywhere for a method without cuts, which misses nothing).
+Image maxCutMask(const CutStats& cuts, int width, int height) {
+  Image mask;
+  mask.width = width, mask.height = height;
+  mask.values = ImageValues::Data;
+  mask.rgba.assign(std::size_t(width) * height * 4, 0.0f);
+  for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
+    const float v = i < cuts.atMaxCut.size() && cuts.atMaxCut[i] ? 1.0f : 0.0f;
+    mask.rgba[4 * i] = mask.rgba[4 * i + 1] = mask.rgba[4 * i + 2] = v;
+    mask.rgba[4 * i + 3] = 1.0f;
+  }
+  return mask;
+}
+
 // Renders and writes one scene; returns its stats. Throws Error.
 // The scene's baked trees, if any, go to the renderer.
 nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
@@ -80,6 +95,8 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     display.toneMap = png ? parseToneMap(a.toneMap) : ToneMap::None;
   }
   writeImage(out.image, output, display);
+  if (!a.maxCutMask.empty())
+    writeImage(maxCutMask(out.frame.cuts, request.width, request.height), a.maxCutMask);
   nlohmann::json stats = {
       {"scene", scenePath},
       {"output", output},
@@ -125,6 +142,12 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     stats["avg_cut_size"] = c.averageCut;
     stats["max_cut_size"] = c.maxCut;
     stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
+    if (c.pixelsAtMaxCut > 0) {
+      std::cerr << "manylight: " << output << ": " << c.pixelsAtMaxCut << " of " << c.pixels
+                << " pixels reached the maximum cut (--max-cut " << request.lightcuts.maxCut
+                << ") before the error rule held: their error is not bounded"
+                << (a.maxCutMask.empty() ? " (--max-cut-mask shows where)" : "") << "\n";
+    }
     stats["pixels_shared_cut"] = c.pixelsSharedCut;
     stats["shared_cuts"] = c.sharedCuts;
     stats["per_pixel_groups"] = c.perPixelGroups;
@@ -168,6 +191,10 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
               << "; use --out-dir for several\n";
     return kExitUsage;
   }
+  if (batch && !a.maxCutMask.empty()) {
+    std::cerr << "manylight: render: --max-cut-mask takes one scene (-o), not --out-dir\n";
+    return kExitUsage;
+  }
   request.camera = a.camera;
   request.ambient = a.ambient.empty() ? glm::vec3(0.0f) : parseRgb(a.ambient);
   request.rigAmbient = a.ambient.empty();
@@ -190,6 +217,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
     jobs = planThumbnails(a.scenes, a.outDir, a.format, shard);
   } else {
     checkOutputPath(a.output);
+    if (!a.maxCutMask.empty()) checkOutputPath(a.maxCutMask);
     jobs.push_back({a.scenes[0], a.output});
   }
 

@@ -230,6 +230,10 @@ WHY = {
         "keep the last pass that fitted, with no bound.",
     ("*", "reference"): "it is the reference; its own error is zero by definition.",
 
+    ("coincident", "lightcuts-node"):
+        "every light is at one point, so a node's representative stands exactly for the rest; "
+        "the far field's remainders, summed per bin of directions, keep the error within ε: "
+        "what is left is the compact node colours and the linear far field.",
     ("two-groups", "lightcuts-distance"):
         "each group is one tight cluster far from most of the room, so the distance criterion "
         "never opens it and one representative light stands for thousands of colours.",

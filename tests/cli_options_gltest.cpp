@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "generators/scene_builder.h"
 #include "gl/limits.h"
+#include "image/image.h"
 #include "render/render_job.h"
 #include "tests/cli_support.h"
 #include "tests/gl_support.h"
@@ -222,6 +224,55 @@ TEST(CliOptions, TheDefaultMethodIsChosenPerSceneAndSaysWhy) {
   EXPECT_EQ(named.exitCode, 0) << named.err;
   EXPECT_EQ(named.err, "");
   EXPECT_FALSE(nlohmann::json::parse(readFile(stats)).contains("method_reason"));
+}
+
+// Pixels whose cut reached --max-cut before the rule held are named: a line on stderr with
+// their count, the count in --stats, and where they are in --max-cut-mask's image.
+TEST(CliOptions, PixelsAtTheMaximumCutAreCountedAndMasked) {
+  RoomOptions room;
+  room.lightCount = 4096;
+  room.textured = false;
+  const std::string scene = roomScene(room);
+  const std::string out = (testFolder() / "total.png").string();
+  const std::string mask = (testFolder() / "mask.png").string();
+  const std::string stats = (testFolder() / "total.json").string();
+  const ProcessResult r =
+      manylight("render " + scene + " -o " + out + " --size 64x48 --method lightcuts " +
+                "--error-mode total --max-cut 16 --max-cut-mask " + mask + " --stats " + stats);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json s = nlohmann::json::parse(readFile(stats));
+  const long long atMax = s["pixels_at_max_cut"].get<long long>();
+  ASSERT_GT(atMax, 0);
+  EXPECT_EQ(r.err, "manylight: " + out + ": " + std::to_string(atMax) + " of " +
+                       std::to_string(s["covered_pixels"].get<long long>()) +
+                       " pixels reached the maximum cut (--max-cut 16) before the error rule "
+                       "held: their error is not bounded\n");
+  const Image m = readImage(mask);
+  ASSERT_EQ(m.width, 64);
+  ASSERT_EQ(m.height, 48);
+  long long white = 0;
+  for (int y = 0; y < m.height; ++y) {
+    for (int x = 0; x < m.width; ++x) {
+      const float v = m.pixel(x, y)[0];
+      EXPECT_TRUE(v == 0.0f || v == 1.0f) << "pixel " << x << ", " << y;
+      white += v == 1.0f ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(white, atMax);
+  // The default maximum: no pixel reaches it, the mask is black and nothing is said.
+  const ProcessResult node = manylight("render " + scene + " -o " + out +
+                                       " --size 64x48 --method lightcuts --max-cut-mask " + mask);
+  ASSERT_EQ(node.exitCode, 0) << node.err;
+  EXPECT_EQ(node.err, "");
+  const Image black = readImage(mask);
+  ASSERT_EQ(black.rgba.size(), std::size_t(64 * 48 * 4));
+  for (std::size_t i = 0; i < black.rgba.size(); i += 4) ASSERT_EQ(black.rgba[i], 0.0f);
+  // A batch has one mask path for many scenes: refused.
+  const ProcessResult batch =
+      manylight("render " + scene + " --out-dir " + (testFolder() / "batch").string() +
+                " --max-cut-mask " + mask);
+  EXPECT_EQ(batch.exitCode, 2);
+  EXPECT_EQ(batch.err, "manylight: render: --max-cut-mask takes one scene (-o), not --out-dir\n");
 }
 
 }  // namespace
