@@ -274,9 +274,9 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
 long long CellCuts::cutCells(const std::vector<int>& grown, const CutRule& rule, int threads,
                              int level) {
   // Under the node rule cells split (or fall back to the frame's squares) where their cut
-  // exceeds kSplitCut, as the frame's groups larger than the finest do.
+  // exceeds splitCut, as the frame's groups larger than the finest do.
   CutRule cellRule = rule;
-  if (!rule.total) cellRule.maxCut = std::min(rule.maxCut, kSplitCut);
+  if (!rule.total) cellRule.maxCut = splitCut(rule);
   const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));
   std::vector<long long> bounds(std::size_t(workers), 0);
   auto work = [&](int t) {

@@ -57,9 +57,9 @@ struct TileCutter::Cut {
     int tree, index;
     const Item* parent;  // its shading at the centre is the child's too when they share a light
   };
-  Waiting waiting[kLanes];
+  Waiting waiting[kLanes]{};
   int waitingCount = 0;
-  BoundLanes bounds;
+  BoundLanes bounds{};
 
   // A heap entry: the measure's bits above the item's index, so that one integer comparison
   // orders entries as (measure, index) pairs would.
@@ -185,7 +185,7 @@ struct TileCutter::Cut {
   }
   // Whether a cut of `size` entries, the largest bound `top`, can take no more refining.
   bool full(int size, float top) const {
-    const int limit = finest || rule.total ? rule.maxCut : std::min(rule.maxCut, kSplitCut);
+    const int limit = finest || rule.total ? rule.maxCut : splitCut(rule);
     return size + 1 > limit || (!rule.total && 2 * size > limit &&
                                 top > cut_region::kHopeless * cut_region::kMargin * rule.error *
                                           cut_region::maxOf(sum));

@@ -248,8 +248,9 @@ TEST_P(Lightcuts, NodeRuleErrorsStayUnderTheirCeilings) {
   // Lights packed together (clusters, one point) were where the node rule's errors added up,
   // to 9–16 ε (the far field's remainders: tile_cuts.h's farBin). They stay within 3 ε.
   const LightLayout layout = GetParam().layout;
-  if (layout == LightLayout::Clustered || layout == LightLayout::Coincident)
+  if (layout == LightLayout::Clustered || layout == LightLayout::Coincident) {
     EXPECT_LE(e.worst, 3.0 * kEpsilon);
+  }
 }
 
 TEST_P(Lightcuts, DistanceCriterionErrorsStayUnderTheirCeilings) {

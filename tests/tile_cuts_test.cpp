@@ -224,6 +224,17 @@ TEST(TileCuts, AFullCutAtTheFinestSizeIsSharedWhenItMeetsTheRuleWithoutTheMargin
   EXPECT_LE(c.worstOverBound, 1.0001);
 }
 
+// Groups larger than the finest split once their cut would exceed kSplitCut entries at
+// ε = kSplitError, proportionally more at smaller ε, never past the maximum.
+TEST(TileCuts, GroupsSplitAtLargerCutsForSmallerErrors) {
+  EXPECT_EQ(splitCut(CutRule{0.02f, false, 2000}), 1000);
+  EXPECT_EQ(splitCut(CutRule{0.05f, false, 2000}), 1000);
+  EXPECT_EQ(splitCut(CutRule{0.01f, false, 2000}), 2000);
+  EXPECT_EQ(splitCut(CutRule{0.01f, false, 4000}), 2000);
+  EXPECT_EQ(splitCut(CutRule{0.005f, false, 4000}), 4000);
+  EXPECT_EQ(splitCut(CutRule{0.005f, false, 1500}), 1500);
+}
+
 // The covered pixels of the square of `size` at (x0, y0).
 std::vector<int> squareOf(const SyntheticGBuffer& g, int x0, int y0, int size) {
   std::vector<int> pixels;
