@@ -1,5 +1,6 @@
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <future>
 #include <iostream>
 
@@ -95,8 +96,15 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     display.toneMap = png ? parseToneMap(a.toneMap) : ToneMap::None;
   }
   writeImage(out.image, output, display);
-  if (!a.maxCutMask.empty())
-    writeImage(maxCutMask(out.frame.cuts, request.width, request.height), a.maxCutMask);
+  if (!a.maxCutMask.empty()) {
+    try {
+      writeImage(maxCutMask(out.frame.cuts, request.width, request.height), a.maxCutMask);
+    } catch (...) {
+      std::error_code ec;
+      std::filesystem::remove(output, ec);  // a failed run leaves nothing behind
+      throw;
+    }
+  }
   nlohmann::json stats = {
       {"scene", scenePath},
       {"output", output},
@@ -193,6 +201,12 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   }
   if (batch && !a.maxCutMask.empty()) {
     std::cerr << "manylight: render: --max-cut-mask takes one scene (-o), not --out-dir\n";
+    return kExitUsage;
+  }
+  if (!batch && !a.maxCutMask.empty() &&
+      std::filesystem::absolute(a.maxCutMask).lexically_normal() ==
+          std::filesystem::absolute(a.output).lexically_normal()) {
+    std::cerr << "manylight: render: --max-cut-mask names the output image " << a.output << "\n";
     return kExitUsage;
   }
   request.camera = a.camera;

@@ -81,9 +81,11 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
     // nodes (which encode a colour) and leaves are shared apart, so that each thread gets
     // as many of the costly ones.
     const std::size_t firstLeaf = std::size_t(tree.firstLeaf());
-    for (const auto& [begin, end] :
-         {std::pair{std::size_t(0), firstLeaf}, std::pair{firstLeaf, tree.nodes.size()}}) {
-      runOnShares(sharesOf(end - begin, kNodesPerThread), end - begin,
+    const std::pair<std::size_t, std::size_t> ranges[2] = {{0, firstLeaf},
+                                                           {firstLeaf, tree.nodes.size()}};
+    for (const auto& range : ranges) {
+      const std::size_t begin = range.first, count = range.second - range.first;
+      runOnShares(sharesOf(count, kNodesPerThread), count,
                   [&](int, std::size_t from, std::size_t to) {
                     for (std::size_t i = begin + from; i < begin + to; ++i)
                       packNode(tree, int(i), t, packed.colour, out + stride * i);

@@ -1,6 +1,7 @@
 #pragma once
-// Runs work(0) … work(threads − 1) at once, work(0) on this thread, and once all have ended
-// rethrows the first exception any of them threw (an exception may not leave a thread).
+// Runs work(0) … work(threads − 1) at once, work(0) on this thread (and any whose thread
+// could not be started, after it), and once all have ended rethrows the first exception any
+// of them threw (an exception may not leave a thread).
 // runOnShares cuts a range of items into consecutive shares, one a thread.
 #include <algorithm>
 #include <cstddef>
@@ -24,8 +25,15 @@ void runOnThreads(int threads, const Work& work) {
     }
   };
   std::vector<std::thread> pool;
-  for (int index = 1; index < threads; ++index) pool.emplace_back(guarded, index);
+  int started = 1;  // work(0) is this thread's
+  try {
+    pool.reserve(std::size_t(std::max(threads - 1, 0)));
+    for (; started < threads; ++started) pool.emplace_back(guarded, started);
+  } catch (const std::exception&) {
+    // No more threads (a process or memory limit): this thread does the rest in turn.
+  }
   guarded(0);
+  for (int index = started; index < threads; ++index) guarded(index);
   for (std::thread& th : pool) th.join();
   if (error) std::rethrow_exception(error);
 }

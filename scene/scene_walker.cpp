@@ -65,11 +65,13 @@ void SceneWalker::walk() {
   for (std::size_t i = 0; i < model_.cameras.size(); ++i) {
     scene_.cameras[i] = convert_.camera(int(i));
   }
-  std::vector<Share> shares(std::size_t(sharesFor(roots)));
-  // At most one light a node, within the budget: the first share's lights, which the Scene
-  // takes, are stored without regrowing.
+  // At most one light a node. Past the budget one walk only counts lights, and throws for
+  // them after it; shares would convert lights that walk only counts, and might meet an
+  // error in one of them first: such a scene is walked in one share.
   std::size_t lightNodes = 0;
   for (const NodeRecord& n : bulk_.nodes) lightNodes += n.light >= 0 ? 1 : 0;
+  std::vector<Share> shares(std::size_t(lightNodes > options_.lightBudget ? 1 : sharesFor(roots)));
+  // The first share's vectors, which the Scene takes, hold every light without regrowing.
   lightNodes = std::min(lightNodes, options_.lightBudget);
   shares[0].lights.reserve(lightNodes);
   shares[0].sources.reserve(lightNodes);
@@ -166,8 +168,8 @@ void SceneWalker::merge(Share& share) {
     }
   }
   lightsSeen_ += share.lightsSeen;
-  if (scene_.lights.empty()) {
-    scene_.lights = std::move(share.lights);
+  if (scene_.lights.empty() && lightSources_.empty()) {
+    scene_.lights = std::move(share.lights);  // at most the budget, and its reserve
     lightSources_ = std::move(share.sources);
   } else {
     const std::size_t room =
@@ -178,7 +180,9 @@ void SceneWalker::merge(Share& share) {
     lightSources_.insert(lightSources_.end(), share.sources.begin(),
                          share.sources.begin() + std::ptrdiff_t(take));
   }
-  if (share.error) std::rethrow_exception(share.error);
+  const std::exception_ptr error = share.error;
+  share = Share{};  // its copies are in the Scene now
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace manylight::gltf

@@ -21,9 +21,9 @@ class SceneWalker {
 
   // Places every node under the default scene's roots (every node that is nobody's child
   // when there are no scenes), depth first, root by root. Many distinct roots that are
-  // nobody's children (kParallelRoots or more: a scene listing each light as a root) are
-  // walked in shares on several threads; the Scene, and the error thrown for a faulty file,
-  // are those of one walk in order. Throws SceneError.
+  // nobody's children (kParallelRoots or more: a scene listing each light as a root), with
+  // no more lights than the budget, are walked in shares on several threads; the Scene, and
+  // the error thrown for a faulty file, are those of one walk in order. Throws SceneError.
   void walk();
 
   // Where each of Scene::lights comes from, in order.

@@ -273,6 +273,10 @@ TEST(CliOptions, PixelsAtTheMaximumCutAreCountedAndMasked) {
                 " --max-cut-mask " + mask);
   EXPECT_EQ(batch.exitCode, 2);
   EXPECT_EQ(batch.err, "manylight: render: --max-cut-mask takes one scene (-o), not --out-dir\n");
+  // The mask in place of the image: refused.
+  const ProcessResult same = manylight("render " + scene + " -o " + out + " --max-cut-mask " + out);
+  EXPECT_EQ(same.exitCode, 2);
+  EXPECT_EQ(same.err, "manylight: render: --max-cut-mask names the output image " + out + "\n");
 }
 
 }  // namespace

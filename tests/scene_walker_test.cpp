@@ -20,15 +20,17 @@ constexpr int kNodes = int(gltf::SceneWalker::kParallelRoots) + 4464;  // 70,000
 // Extra JSON properties of some nodes, by index.
 using Extras = std::map<int, std::string>;
 
-// kNodes light nodes, each placed differently, with cameras on nodes 60,000 and 20 (the
-// first in walk order wins). `grouped`: under one parent node (the last, at the origin), so
-// one walk goes through them; else each is a scene root.
+// kNodes light nodes, each placed differently: camera 0 on node 60,000, camera 1 on nodes
+// 69,000 and 20 (in different shares: the first in walk order, node 20, places it). `grouped`:
+// under one parent node (the last, at the origin), so one walk goes through them; else each is a
+// scene root.
 std::string manyLights(bool grouped, const Extras& extras = {}, const std::string& more = "") {
   std::string nodes;
   for (int i = 0; i < kNodes; ++i) {
     nodes += "{\"translation\": [" + std::to_string(i % 97) + ", " + std::to_string(i % 13) +
              ".25, -" + std::to_string(i / 1000) + "], \"rotation\": [0, 0.6, 0, 0.8]";
-    if (i == 60000 || i == 20) nodes += ", \"camera\": " + std::to_string(i == 20);
+    if (i == 60000 || i == 69000 || i == 20)
+      nodes += ", \"camera\": " + std::to_string(i == 60000 ? 0 : 1);
     if (extras.count(i)) nodes += ", " + extras.at(i);
     nodes +=
         ", \"extensions\": {\"KHR_lights_punctual\": {\"light\": " + std::to_string(i % 3) + "}}},";
@@ -84,6 +86,23 @@ TEST(SceneWalker, ManyRootsGiveTheSceneOfOneWalkInOrder) {
   // Camera 1 is placed by node 20, camera 0 by node 60,000.
   EXPECT_EQ(glm::vec3(shared.cameras[1].world[3]), glm::vec3(20, 7.25f, 0));
   EXPECT_EQ(glm::vec3(shared.cameras[0].world[3]), glm::vec3(60000 % 97, 60000 % 13 + 0.25f, -60));
+}
+
+TEST(SceneWalker, LightsPastTheBudgetAreCountedAsOneWalkCountsThem) {
+  // One walk converts the first 40,000 lights only, counts the rest and then refuses the
+  // scene; a light past the budget whose node collapses its direction is never converted.
+  LoadOptions options;
+  options.lightBudget = 40000;
+  const Extras collapsed = {{50000, "\"scale\": [1, 1, 0]"}};
+  const std::string path = writeFile("budget.gltf", manyLights(false, collapsed));
+  try {
+    loadGltf(path, options);
+    ADD_FAILURE() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), path +
+                                         ": 70000 lights exceed the light budget of 40000 "
+                                         "(--light-budget)");
+  }
 }
 
 TEST(SceneWalker, TheFirstFaultyNodeInWalkOrderIsNamed) {
