@@ -133,15 +133,18 @@ void writeBakedScene(const std::string& path, const BakedScene& baked) {
   table.put(std::uint32_t(sections.size()));
   std::uint64_t offset = kBakedHeaderBytes + 4 + sections.size() * 24;
   for (const auto& [tag, body] : sections) {
-    table.put(tag), table.put(std::uint32_t(0)), table.put(offset),
-        table.put(std::uint64_t(body.size()));
-    offset += body.size();
+    const std::uint64_t size = body.size();
+    table.put(tag), table.put(std::uint32_t(0)), table.put(offset), table.put(size);
+    offset += size;
   }
-  // The sections are written as they are, not gathered into one buffer first: at a million
-  // lights they are a few hundred megabytes.
+  // The sections are written run by run (their large arrays are views of `baked`'s), never
+  // gathered into one buffer: at a million lights they are a few hundred megabytes.
+  std::vector<std::string_view> runs = table.runs();
+  for (const auto& section : sections) {
+    for (const std::string_view r : section.second.runs()) runs.push_back(r);
+  }
   Checksum sum;
-  sum.add(table.bytes());
-  for (const auto& section : sections) sum.add(section.second);
+  for (const std::string_view r : runs) sum.add(r);
   char header[kBakedHeaderBytes] = {};
   std::memcpy(header, kBakedMagic, 8);
   const std::uint32_t version = kBakedFormatVersion, flags = 0;
@@ -154,9 +157,7 @@ void writeBakedScene(const std::string& path, const BakedScene& baked) {
   {
     std::ofstream out(tmp, std::ios::binary);
     out.write(header, kBakedHeaderBytes);
-    out.write(table.bytes().data(), std::streamsize(table.bytes().size()));
-    for (const auto& section : sections)
-      out.write(section.second.data(), std::streamsize(section.second.size()));
+    for (const std::string_view r : runs) out.write(r.data(), std::streamsize(r.size()));
     out.close();
     if (!out) {
       std::error_code ec;

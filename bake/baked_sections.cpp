@@ -27,7 +27,7 @@ void writeTrees(Writer& w, const BakedScene& b) {
   w.array(p.words);
 }
 
-std::string section(std::uint32_t which, const BakedScene& b) {
+Writer section(std::uint32_t which, const BakedScene& b) {
   const Scene& s = b.scene;
   Writer w;
   if (which == kScene) {
@@ -105,7 +105,7 @@ std::string section(std::uint32_t which, const BakedScene& b) {
   } else if (which == kLightAnimation) {
     writeLightAnimation(w, s.lightAnimation);
   }
-  return std::move(w.bytes());
+  return w;
 }
 
 bool finite(const float* v, std::size_t n) {
@@ -319,13 +319,13 @@ void readTrees(Reader& r, BakedScene& b) {
 
 }  // namespace
 
-std::vector<std::pair<std::uint32_t, std::string>> writeSections(const BakedScene& baked) {
+std::vector<std::pair<std::uint32_t, Writer>> writeSections(const BakedScene& baked) {
   std::vector<std::uint32_t> tags = {kScene,     kMaterials, kTextures, kMeshes,
                                      kInstances, kLights,    kCameras};
   if (baked.hasTrees) tags.push_back(kTrees);
   if (baked.hasOctree) tags.push_back(kOctree);
   if (baked.scene.lightAnimation.animated()) tags.push_back(kLightAnimation);
-  std::vector<std::pair<std::uint32_t, std::string>> out;
+  std::vector<std::pair<std::uint32_t, Writer>> out;
   for (std::uint32_t t : tags) out.emplace_back(t, section(t, baked));
   return out;
 }

@@ -24,26 +24,55 @@ constexpr std::uint32_t kScene = tag("SCNE"), kMaterials = tag("MATL"), kTexture
                         kMeshes = tag("MESH"), kInstances = tag("INST"), kLights = tag("LGHT"),
                         kCameras = tag("CAMR"), kTrees = tag("TREE");
 
+// Writes a section as a list of byte runs: its own, and views of the large arrays written
+// (which must outlive it), so that a million lights' trees (hundreds of megabytes) go to
+// the file without a copy.
 class Writer {
  public:
   template <typename T>
   void put(const T& v) {
     static_assert(std::is_trivially_copyable_v<T>);
-    out_.append(reinterpret_cast<const char*>(&v), sizeof v);
+    tail().append(reinterpret_cast<const char*>(&v), sizeof v);
   }
   template <typename T>
   void array(const std::vector<T>& v) {  // count, then the elements
     put(std::uint64_t(v.size()));
-    if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (v.empty()) return;
+    const std::string_view bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (bytes.size() >= kBorrowFrom) {
+      runs_.push_back({std::string(), bytes});
+    } else {
+      tail().append(bytes);
+    }
   }
   void string(const std::string& s) {
     put(std::uint64_t(s.size()));
-    out_ += s;
+    tail() += s;
   }
-  std::string& bytes() { return out_; }
+  // The runs, in order.
+  std::vector<std::string_view> runs() const {
+    std::vector<std::string_view> out;
+    for (const Run& r : runs_) out.push_back(r.borrowed.data() ? r.borrowed : r.owned);
+    return out;
+  }
+  std::size_t size() const {
+    std::size_t n = 0;
+    for (const std::string_view r : runs()) n += r.size();
+    return n;
+  }
 
  private:
-  std::string out_;
+  // Arrays of this many bytes or more are viewed, not copied.
+  static constexpr std::size_t kBorrowFrom = std::size_t(1) << 16;
+  struct Run {
+    std::string owned;
+    std::string_view borrowed;  // when set, the run
+  };
+  std::string& tail() {
+    if (runs_.empty() || runs_.back().borrowed.data()) runs_.emplace_back();
+    return runs_.back().owned;
+  }
+  std::vector<Run> runs_;
 };
 
 // Reads a section; every read is checked against what is left, before any allocation.
@@ -115,8 +144,8 @@ T getFinite(Reader& r, const char* what) {
   return v;
 }
 
-// The sections `baked` needs, in file order: (tag, bytes).
-std::vector<std::pair<std::uint32_t, std::string>> writeSections(const BakedScene& baked);
+// The sections `baked` needs, in file order: (tag, bytes); they view `baked`'s arrays.
+std::vector<std::pair<std::uint32_t, Writer>> writeSections(const BakedScene& baked);
 
 // Reads the sections (tag → bytes) of the file at `path`. Throws BakeError
 // "PATH: SECTION: problem".
