@@ -26,15 +26,6 @@ std::string writeFile(const std::string& name, const GltfFile& f) {
   return path;
 }
 
-std::string loadError(const std::string& path, const LoadOptions& options = {}) {
-  try {
-    loadGltf(path, options);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 const Primitive& onlyPrimitive(const Scene& s) {
   EXPECT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(s.meshes.at(0).primitives.size(), 1u);

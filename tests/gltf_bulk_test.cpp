@@ -153,13 +153,8 @@ TEST(GltfBulk, AnEscapedScenesKeyIsRefused) {
   const std::string path =
       writeFile("escaped-scenes.gltf",
                 R"({"asset": {"version": "2.0"}, "nodes": [{}], "sc\u0065nes": [{"nodes": [0]}]})");
-  try {
-    loadGltf(path);
-    ADD_FAILURE() << "loaded";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              path + ": scenes: written with escapes in its key, which is not supported");
-  }
+  EXPECT_EQ(loadError(path),
+            path + ": scenes: written with escapes in its key, which is not supported");
 }
 
 TEST(GltfBulk, TextThatIsNotJsonIsLeftToTinygltf) {
@@ -272,12 +267,7 @@ TEST(GltfBulk, BadNodesAndLightsNameTheElement) {
     for (const char* ext : {".gltf", ".glb"}) {
       const std::string path =
           writeFile(std::string(b.name) + ext, std::string(ext) == ".glb" ? glbOf(json) : json);
-      try {
-        loadGltf(path);
-        ADD_FAILURE() << path << " loaded";
-      } catch (const SceneError& e) {
-        EXPECT_EQ(std::string(e.what()), path + ": " + b.message);
-      }
+      EXPECT_EQ(loadError(path), path + ": " + b.message);
     }
   }
 }

@@ -175,16 +175,6 @@ TEST(Scene, SceneFilesAreMappedWithZeroPadding) {
 namespace manylight::testing {
 namespace {
 
-// The message loadGltf throws for `path`, or "" when it loads.
-std::string loadError(const std::string& path, const LoadOptions& options = {}) {
-  try {
-    loadGltf(path, options);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(Scene, AssetLinksOutOfTheFolderFifosAndOversizedFilesAreRefused) {
   namespace fs = std::filesystem;
   const fs::path outside = testFolder() / "outside.bin";

@@ -55,15 +55,6 @@ std::string manyLights(bool grouped, const Extras& extras = {}, const std::strin
          nodes + "], \"scenes\": [{\"nodes\": [" + roots + more + "]}]}";
 }
 
-std::string failure(const std::string& path) {
-  try {
-    loadGltf(path);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(SceneWalker, ManyRootsGiveTheSceneOfOneWalkInOrder) {
   const Scene shared = loadGltf(writeFile("roots.gltf", manyLights(false)));
   const Scene one = loadGltf(writeFile("grouped.gltf", manyLights(true)));
@@ -95,27 +86,21 @@ TEST(SceneWalker, LightsPastTheBudgetAreCountedAsOneWalkCountsThem) {
   options.lightBudget = 40000;
   const Extras collapsed = {{50000, "\"scale\": [1, 1, 0]"}};
   const std::string path = writeFile("budget.gltf", manyLights(false, collapsed));
-  try {
-    loadGltf(path, options);
-    ADD_FAILURE() << "loaded";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()), path +
-                                         ": 70000 lights exceed the light budget of 40000 "
-                                         "(--light-budget)");
-  }
+  EXPECT_EQ(loadError(path, options),
+            path + ": 70000 lights exceed the light budget of 40000 (--light-budget)");
 }
 
 TEST(SceneWalker, TheFirstFaultyNodeInWalkOrderIsNamed) {
   // One fault late (in the last share), one early (in the first).
   const Extras late = {{69000, "\"mesh\": -3"}};
-  EXPECT_EQ(failure(writeFile("late.gltf", manyLights(false, late))),
+  EXPECT_EQ(loadError(writeFile("late.gltf", manyLights(false, late))),
             testFolder().string() + "/late.gltf: node 69000: mesh -3 does not exist");
   const Extras both = {{69000, "\"mesh\": -3"}, {7, "\"scale\": [1e39, 1, 1]"}};
-  EXPECT_EQ(failure(writeFile("both.gltf", manyLights(false, both))),
+  EXPECT_EQ(loadError(writeFile("both.gltf", manyLights(false, both))),
             testFolder().string() + "/both.gltf: node 7: transform is not finite");
   // A root listed twice: one walk, which meets it again at the end.
   EXPECT_EQ(
-      failure(writeFile("twice.gltf", manyLights(false, {}, ", 5"))),
+      loadError(writeFile("twice.gltf", manyLights(false, {}, ", 5"))),
       testFolder().string() +
           "/twice.gltf: node 5 is reached twice (a scene root listed twice, or also a child)");
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "base/error.h"
 #include "scene/gltf_loader.h"
 
 namespace manylight::testing {
@@ -27,6 +28,15 @@ fs::path testFolder() {
   const fs::path dir = root / name;
   fs::create_directories(dir);
   return dir;
+}
+
+std::string loadError(const std::string& path, const LoadOptions& options) {
+  try {
+    loadGltf(path, options);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 std::string writeFile(const std::string& name, const std::string& text) {

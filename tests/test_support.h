@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "generators/scene_builder.h"
+#include "scene/gltf_loader.h"
 
 namespace manylight::testing {
 
@@ -14,6 +15,9 @@ std::filesystem::path testFolder();
 
 // Writes `text` to NAME in the test folder and returns its path.
 std::string writeFile(const std::string& name, const std::string& text);
+
+// The message loadGltf throws for `path` (SceneError), or "" when it loads.
+std::string loadError(const std::string& path, const LoadOptions& options = {});
 
 // Writes the room scene with `options` into the test folder and returns its path.
 std::string roomScene(const RoomOptions& options, const std::string& name = "room.gltf");
