@@ -57,7 +57,7 @@ class Writer {
   }
   std::size_t size() const {
     std::size_t n = 0;
-    for (const std::string_view r : runs()) n += r.size();
+    for (const Run& r : runs_) n += r.borrowed.data() ? r.borrowed.size() : r.owned.size();
     return n;
   }
 

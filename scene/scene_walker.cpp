@@ -167,18 +167,15 @@ void SceneWalker::merge(Share& share) {
       camera.animation = cameraAnimation(model_, bulk_, parent_, use.node);
     }
   }
+  // A scene past the budget is walked in one share, whose lights (at most the budget) the
+  // Scene takes; several shares hold every light between them.
   lightsSeen_ += share.lightsSeen;
-  if (scene_.lights.empty() && lightSources_.empty()) {
-    scene_.lights = std::move(share.lights);  // at most the budget, and its reserve
+  if (scene_.lights.empty()) {
+    scene_.lights = std::move(share.lights);
     lightSources_ = std::move(share.sources);
   } else {
-    const std::size_t room =
-        options_.lightBudget - std::min(options_.lightBudget, scene_.lights.size());
-    const std::size_t take = std::min(room, share.lights.size());
-    scene_.lights.insert(scene_.lights.end(), share.lights.begin(),
-                         share.lights.begin() + std::ptrdiff_t(take));
-    lightSources_.insert(lightSources_.end(), share.sources.begin(),
-                         share.sources.begin() + std::ptrdiff_t(take));
+    scene_.lights.insert(scene_.lights.end(), share.lights.begin(), share.lights.end());
+    lightSources_.insert(lightSources_.end(), share.sources.begin(), share.sources.end());
   }
   const std::exception_ptr error = share.error;
   share = Share{};  // its copies are in the Scene now
