@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <future>
 #include <glm/gtc/constants.hpp>
 #include <limits>
+#include <utility>
+
+#include "base/parallel.h"
 
 namespace manylight {
 namespace {
@@ -114,153 +118,208 @@ LightTreeNode mergeNodes(const LightTreeNode& l, const LightTreeNode& r, double 
   return n;
 }
 
-// A range of items [first, last) of a builder, split at `mid` by the median along an axis:
-// 0–2 position, 3–5 the spot axis scaled by the scene diagonal.
-struct Splitter {
+// Fewer lights or nodes than this a thread are sorted or filled on one.
+constexpr std::size_t kPerThread = 16384;
+
+// A light as the builder orders it: where it is (directional: its direction on the unit
+// sphere), what it emits, and its index among its tree's lights.
+struct Key {
+  glm::vec3 point;
+  glm::vec3 intensity;
+  int index;
+};
+
+// Builds one tree from its lights kept in order along each split axis (0–2 position, 3–5
+// the spot direction): a node's lights are one range [lo, hi) of every order, so the median
+// split along an axis is that axis's order cut at its middle, and a split keeps the other
+// orders by one stable partition each. Nothing is selected or sorted again below the root:
+// each level costs a metric pass and a partition per axis over memory read in sequence.
+struct Builder {
+  const std::vector<Light>* lights;
+  const std::vector<int>* scene;  // lightOrder's texture slot → scene index
+  int firstSlot;                  // the slot of the tree's light 0
+  std::vector<LightTreeNode>* nodes;
+  Split split;
   bool oriented;  // spot lights: directions count in the metric
-  double c;       // scene diagonal
+  double c;       // scene diagonal, times the cone weight
+  bool cones;     // spot lights: nodes bound their directions
+  std::uint64_t seed;
+  int axisCount = 3;
+  std::vector<glm::vec3> direction;  // per index, when oriented
+  std::vector<Key> order[6];
+  std::vector<Key> scratch;
+  std::vector<std::uint8_t> right;  // per index: in the right half of the split being made
+  std::vector<int> leafKey;         // per leaf: the index of its light; −1: none
 
-  // The selection with the axis fixed at compile time: no branch on it per comparison (the
-  // builder's most frequent operation).
-  template <int Axis>
-  void partitionAlong(Item* first, Item* mid, Item* last) const {
-    const float scale = float(c);
-    std::nth_element(first, mid, last, [scale](const Item& a, const Item& b) {
-      if constexpr (Axis < 3) {
-        return a.point[Axis] < b.point[Axis];
-      } else {
-        return scale * a.axis[Axis - 3] < scale * b.axis[Axis - 3];
-      }
-    });
-  }
-
-  void partition(Item* first, Item* mid, Item* last, int axis) const {
-    switch (axis) {
-      case 0:
-        return partitionAlong<0>(first, mid, last);
-      case 1:
-        return partitionAlong<1>(first, mid, last);
-      case 2:
-        return partitionAlong<2>(first, mid, last);
-      case 3:
-        return partitionAlong<3>(first, mid, last);
-      case 4:
-        return partitionAlong<4>(first, mid, last);
-      default:
-        return partitionAlong<5>(first, mid, last);
+  void sortOrders(int count) {
+    axisCount = oriented ? 6 : 3;
+    std::vector<Key> keys(static_cast<std::size_t>(count));
+    if (oriented) direction.resize(std::size_t(count));
+    for (int i = 0; i < count; ++i) {
+      const Item it = itemOf((*lights)[std::size_t((*scene)[std::size_t(firstSlot + i)])], 0);
+      keys[std::size_t(i)] = {it.point, it.intensity, i};
+      if (oriented) direction[std::size_t(i)] = it.axis;
     }
+    const int shares =
+        std::min(axisCount, sharesOf(keys.size() * std::size_t(axisCount), kPerThread));
+    runOnShares(shares, std::size_t(axisCount), [&](int, std::size_t from, std::size_t to) {
+      for (std::size_t axis = from; axis < to; ++axis) sortAlong(int(axis), keys);
+    });
+    scratch.resize(std::size_t(count));
+    right.resize(std::size_t(count));
   }
 
-  // Metric of the items as one cluster. The cone is the one around the mean direction (not
+  float coordinate(const Key& k, int axis) const {
+    return axis < 3 ? k.point[axis] : direction[std::size_t(k.index)][axis - 3];
+  }
+
+  // order[axis]: the keys by their coordinate along it, ties by index (so builds repeat):
+  // a stable radix sort, in three passes of 11 bits, of the coordinates' bits turned into
+  // unsigned integers of the same order (−0 taken as +0, as a comparison would).
+  void sortAlong(int axis, const std::vector<Key>& keys) {
+    const std::size_t count = keys.size();
+    std::vector<std::uint64_t> ranked(count), spare(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const float x = coordinate(keys[i], axis);
+      std::uint32_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      if (x == 0.0f) bits = 0;
+      bits = bits >> 31 ? ~bits : bits | 0x80000000u;
+      ranked[i] = std::uint64_t(bits) << 32 | i;
+    }
+    for (int shift = 32; shift < 64; shift += 11) {
+      std::vector<std::size_t> start(2049, 0);
+      for (const std::uint64_t r : ranked) ++start[((r >> shift) & 2047) + 1];
+      for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+      for (const std::uint64_t r : ranked) spare[start[(r >> shift) & 2047]++] = r;
+      ranked.swap(spare);
+    }
+    std::vector<Key>& out = order[axis];
+    out.resize(count);
+    for (std::size_t i = 0; i < count; ++i) out[i] = keys[ranked[i] & 0xffffffffu];
+  }
+
+  // Metric of the keys as one cluster. The cone is the one around the mean direction (not
   // the smallest, which would need trigonometry per light): good enough to rank splits.
-  double metricOf(const Item* first, const Item* last) const {
+  double metricOf(const Key* first, const Key* last) const {
     glm::vec3 mn = first->point, mx = mn, sum(0.0f), axisSum(0.0f);
-    for (const Item* it = first; it != last; ++it) {
+    for (const Key* it = first; it != last; ++it) {
       mn = glm::min(mn, it->point);
       mx = glm::max(mx, it->point);
       sum += it->intensity;
-      axisSum += it->axis;
     }
     double cone = 0.0;
-    if (oriented && glm::dot(axisSum, axisSum) > 0.0f) {
-      const glm::vec3 mean = glm::normalize(axisSum);
-      float cosSpread = 1.0f;
-      for (const Item* it = first; it != last; ++it)
-        cosSpread = std::min(cosSpread, glm::dot(mean, it->axis));
-      cone = c * (1.0 - double(cosSpread));
-    } else if (oriented) {
-      cone = 2.0 * c;
+    if (oriented) {
+      for (const Key* it = first; it != last; ++it) axisSum += direction[std::size_t(it->index)];
+      if (glm::dot(axisSum, axisSum) > 0.0f) {
+        const glm::vec3 mean = glm::normalize(axisSum);
+        float cosSpread = 1.0f;
+        for (const Key* it = first; it != last; ++it)
+          cosSpread = std::min(cosSpread, glm::dot(mean, direction[std::size_t(it->index)]));
+        cone = c * (1.0 - double(cosSpread));
+      } else {
+        cone = 2.0 * c;
+      }
     }
     const glm::dvec3 d = glm::dvec3(mx) - glm::dvec3(mn);
     return scalar(sum) * (glm::dot(d, d) + cone * cone);
   }
 
-  // The axis whose median split has the smallest summed metric; leaves the range split
-  // along it.
-  int bestAxis(Item* first, Item* mid, Item* last) const {
+  // The axis to split [lo, hi) along at mid: the one whose median split has the smallest
+  // summed metric (Split::Metric), or the longest of the lights' box.
+  int chooseAxis(int lo, int mid, int hi) const {
+    if (split == Split::LongestAxis) {
+      const Key* first = order[0].data();
+      glm::vec3 mn = first[lo].point, mx = mn;
+      for (int i = lo + 1; i < hi; ++i)
+        mn = glm::min(mn, first[i].point), mx = glm::max(mx, first[i].point);
+      const glm::vec3 e = mx - mn;
+      return e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
+    }
     int best = 0;
     double bestCost = std::numeric_limits<double>::infinity();
-    const int axes = oriented ? 6 : 3;
-    for (int axis = 0; axis < axes; ++axis) {
-      partition(first, mid, last, axis);
-      const double cost = metricOf(first, mid) + metricOf(mid, last);
+    for (int axis = 0; axis < axisCount; ++axis) {
+      const Key* first = order[axis].data();
+      const double cost = metricOf(first + lo, first + mid) + metricOf(first + mid, first + hi);
       if (cost < bestCost) bestCost = cost, best = axis;
     }
-    if (best != axes - 1) partition(first, mid, last, best);
     return best;
   }
-};
 
-// Ranges of more items than this choose their split axis on an evenly strided sample of
-// kSplitSample of them, then split once along it: each axis tried over a range that large
-// costs a selection and two metric passes over memory that no cache holds (at 2^20 mixed
-// lights, the top three levels of each tree: a sixth of the build). Below it every split
-// is exact: sampled splits from 4,096 lights up measured a 99th-percentile error a tenth
-// higher at 65,536 mixed lights, where at 2^20 lights the sampled top levels change neither
-// errors nor cut sizes (docs/performance.md).
-constexpr int kSampledSplitAbove = 65536;
-constexpr int kSplitSample = 1024;
-
-struct Builder {
-  std::vector<Item> items;
-  std::vector<LightTreeNode>* nodes;
-  Split split;
-  Splitter axes;
-  bool cones;  // spot lights: nodes bound their directions
-  std::uint64_t seed;
-
-  void chooseAndPartition(int lo, int mid, int hi) {
-    Item* const first = items.data() + lo;
-    if (split == Split::LongestAxis) {
-      glm::vec3 mn = items[lo].point, mx = mn;
-      for (int i = lo + 1; i < hi; ++i)
-        mn = glm::min(mn, items[i].point), mx = glm::max(mx, items[i].point);
-      const glm::vec3 e = mx - mn;
-      axes.partition(first, first + (mid - lo), first + (hi - lo),
-                     e.x >= e.y && e.x >= e.z ? 0
-                     : e.y >= e.z             ? 1
-                                              : 2);
-      return;
+  // Splits [lo, hi) at mid along `axis`: every other order keeps its halves' keys in order.
+  void splitAt(int lo, int mid, int hi, int axis) {
+    // Local pointers: stores through the byte array could otherwise alias the vectors'.
+    std::uint8_t* const side = right.data();
+    Key* const out = scratch.data();
+    const Key* const cut = order[axis].data();
+    for (int i = lo; i < mid; ++i) side[cut[i].index] = 0;
+    for (int i = mid; i < hi; ++i) side[cut[i].index] = 1;
+    for (int other = 0; other < axisCount; ++other) {
+      if (other == axis) continue;
+      Key* const keys = order[other].data();
+      int l = lo, r = mid;
+      for (int i = lo; i < hi; ++i) {
+        // Without a branch: which half a light goes to is as good as random.
+        const int toRight = side[keys[i].index];
+        out[toRight ? r : l] = keys[i];
+        r += toRight;
+        l += 1 - toRight;
+      }
+      std::copy(out + lo, out + hi, keys + lo);
     }
-    const int n = hi - lo;
-    if (n <= kSampledSplitAbove) {
-      axes.bestAxis(first, first + (mid - lo), first + (hi - lo));
-      return;
-    }
-    std::vector<Item> sample(kSplitSample);
-    for (int k = 0; k < kSplitSample; ++k)
-      sample[std::size_t(k)] = first[std::int64_t(k) * n / kSplitSample];
-    const int best = axes.bestAxis(sample.data(), sample.data() + kSplitSample / 2,
-                                   sample.data() + kSplitSample);
-    axes.partition(first, first + (mid - lo), first + (hi - lo), best);
   }
 
-  // Fills node `index` (with `capacity` leaves below it) from items [lo, hi).
-  void build(int index, int capacity, int lo, int hi, int depth) {
-    LightTreeNode& node = (*nodes)[index];
+  // Splits node `index`'s lights [lo, hi) down to its leaves (`capacity` of them below it),
+  // each taking its light's index in leafKey.
+  void splitDown(int index, int capacity, int lo, int hi, int depth) {
+    if (hi == lo) return;  // an empty subtree: its nodes stay empty
     if (capacity == 1) {
-      node = hi > lo ? leafNode(items[lo]) : LightTreeNode{};
+      leafKey[std::size_t(index + 1) - leafKey.size()] = order[0][std::size_t(lo)].index;
       return;
     }
     const int left = 2 * index + 1, right = 2 * index + 2;
-    if (hi == lo) {
-      // An empty subtree: nodes are already value-initialised as empty.
-      return;
-    }
     const int mid = lo + (hi - lo + 1) / 2;
-    if (hi - lo > 1) chooseAndPartition(lo, mid, hi);
-    // The top levels build their halves on two threads (the halves touch disjoint items and
-    // nodes); below, one thread each.
+    if (hi - lo > 1) splitAt(lo, mid, hi, chooseAxis(lo, mid, hi));
+    // The top levels split their halves on two threads (the halves touch disjoint ranges of
+    // every array and disjoint leaves); below, one thread each.
     if (depth < 2 && hi - lo > 4096) {
-      auto half =
-          std::async(std::launch::async, [&] { build(left, capacity / 2, lo, mid, depth + 1); });
-      build(right, capacity / 2, mid, hi, depth + 1);
+      auto half = std::async(std::launch::async,
+                             [&] { splitDown(left, capacity / 2, lo, mid, depth + 1); });
+      splitDown(right, capacity / 2, mid, hi, depth + 1);
       half.get();
     } else {
-      build(left, capacity / 2, lo, mid, depth + 1);
-      build(right, capacity / 2, mid, hi, depth + 1);
+      splitDown(left, capacity / 2, lo, mid, depth + 1);
+      splitDown(right, capacity / 2, mid, hi, depth + 1);
     }
-    node = mergeNodes((*nodes)[left], (*nodes)[right], uniform(seed, std::uint64_t(index)), cones);
+  }
+
+  // Fills the leaves from their lights, then each level of internal nodes from the one
+  // below, in shares (a leaf reads its light from anywhere in memory: many reads in flight).
+  void fillNodes() {
+    const std::size_t leafCount = leafKey.size();
+    std::vector<LightTreeNode>& n = *nodes;
+    runOnShares(sharesOf(leafCount, kPerThread), leafCount,
+                [&](int, std::size_t from, std::size_t to) {
+                  for (std::size_t i = from; i < to; ++i) {
+                    if (leafKey[i] < 0) continue;
+                    const int slot = firstSlot + leafKey[i];
+                    n[leafCount - 1 + i] =
+                        leafNode(itemOf((*lights)[std::size_t((*scene)[std::size_t(slot)])], slot));
+                  }
+                });
+    for (std::size_t width = leafCount / 2; width >= 1; width /= 2) {
+      runOnShares(sharesOf(width, kPerThread), width, [&](int, std::size_t from, std::size_t to) {
+        for (std::size_t i = width - 1 + from; i < width - 1 + to; ++i)
+          n[i] = mergeNodes(n[2 * i + 1], n[2 * i + 2], uniform(seed, i), cones);
+      });
+    }
+  }
+
+  void build(int count, int leafCount) {
+    sortOrders(count);
+    leafKey.assign(std::size_t(leafCount), -1);
+    splitDown(0, leafCount, 0, count, 0);
+    fillNodes();
   }
 };
 
@@ -285,29 +344,34 @@ std::vector<LightTree> buildLightTrees(const std::vector<Light>& lights,
   }
   const double c = mx.x >= mn.x ? glm::length(mx - mn) : 0.0;
 
-  std::vector<LightTree> trees;
   const int starts[4] = {0, order.pointStart, order.spotStart, int(order.scene.size())};
   const LightType types[3] = {LightType::Directional, LightType::Point, LightType::Spot};
-  for (int t = 0; t < 3; ++t) {
+  // The types' trees are built at once: each one's top levels and sorts leave cores idle.
+  LightTree built[3];
+  runOnThreads(3, [&](int t) {
     const int count = starts[t + 1] - starts[t];
-    if (count == 0) continue;
-    Builder b;
-    b.items.reserve(count);
-    for (int slot = starts[t]; slot < starts[t + 1]; ++slot)
-      b.items.push_back(itemOf(lights[order.scene[slot]], slot));
-    LightTree tree;
+    if (count == 0) return;
+    LightTree& tree = built[t];
     tree.type = types[t];
     tree.leafCount = 1;
     while (tree.leafCount < count) tree.leafCount *= 2;
     tree.nodes.assign(std::size_t(2) * tree.leafCount - 1, LightTreeNode{});
+    Builder b;
+    b.lights = &lights;
+    b.scene = &order.scene;
+    b.firstSlot = starts[t];
     b.nodes = &tree.nodes;
     b.split = options.split;
-    b.axes.oriented = tree.type == LightType::Spot && options.coneWeight > 0.0;
+    b.oriented =
+        tree.type == LightType::Spot && options.coneWeight > 0.0 && options.split == Split::Metric;
     b.cones = tree.type == LightType::Spot;
-    b.axes.c = c * options.coneWeight;
+    b.c = c * options.coneWeight;
     b.seed = options.seed ^ std::uint64_t(t);
-    b.build(0, tree.leafCount, 0, count, 0);
-    trees.push_back(std::move(tree));
+    b.build(count, tree.leafCount);
+  });
+  std::vector<LightTree> trees;
+  for (LightTree& tree : built) {
+    if (tree.leafCount > 0) trees.push_back(std::move(tree));
   }
   return trees;
 }

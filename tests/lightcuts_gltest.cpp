@@ -113,7 +113,7 @@ const Case kCases[] = {
     {"wide_intensities_2000",  LightLayout::WideIntensities, 2000, false,
      {0.0213, 0.0139, 0.00358, 455},  {0.134, 0.0229, 0.00615, 488}},
     {"far_1000",               LightLayout::Far,             1000, false,
-     {0.0195, 0.00673, 0.00153, 488}, {0.620, 0.0380, 0.0112, 120}},
+     {0.0116, 0.00722, 0.00256, 489}, {0.364, 0.0428, 0.00345, 120}},
     {"mixed_3000",             LightLayout::Mixed,           3000, false,
      {0.0662, 0.0415, 0.0145, 609},  {0.186, 0.0576, 0.0148, 806}},
     {"count_1",                LightLayout::Mixed,           1,    false,
