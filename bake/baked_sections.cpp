@@ -281,7 +281,7 @@ void readTrees(Reader& r, BakedScene& b) {
   p.colour.slackFloor = r.get<double>();
   if (!(p.colour.slack >= 0.0 && p.colour.slack < 1e3) || !(p.colour.slackFloor >= 0.0))
     r.fail("slack out of range");
-  p.words = r.array<std::uint32_t>();
+  p.words = r.array<std::uint32_t, Uninitialised<std::uint32_t>>();
   if (p.words.size() % 4 != 0) r.fail("tree words are not whole texels");
   // The trees must be the layout's, for lights the file holds: each complete, in place, and
   // every representative a light of its type.

@@ -34,8 +34,8 @@ class Writer {
     static_assert(std::is_trivially_copyable_v<T>);
     tail().append(reinterpret_cast<const char*>(&v), sizeof v);
   }
-  template <typename T>
-  void array(const std::vector<T>& v) {  // count, then the elements
+  template <typename T, typename Allocator>
+  void array(const std::vector<T, Allocator>& v) {  // count, then the elements
     put(std::uint64_t(v.size()));
     if (v.empty()) return;
     const std::string_view bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
@@ -89,12 +89,12 @@ class Reader {
     at_ += sizeof v;
     return v;
   }
-  template <typename T>
-  std::vector<T> array() {
+  template <typename T, typename Allocator = std::allocator<T>>
+  std::vector<T, Allocator> array() {
     const std::uint64_t n = get<std::uint64_t>();
     if (n > (bytes_.size() - at_) / sizeof(T))
       fail("an array of " + std::to_string(n) + " runs past the section");
-    std::vector<T> v(n);
+    std::vector<T, Allocator> v(n);
     if (n > 0)
       std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));  // memcpy from/to null is UB
     at_ += n * sizeof(T);

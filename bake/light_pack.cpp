@@ -46,7 +46,8 @@ void packLightTexel(const Light& l, float* t) {
     t[0] = l.position.x, t[1] = l.position.y, t[2] = l.position.z;
     t[3] = l.range > 0.0f && std::isfinite(l.range) ? 1.0f / (l.range * l.range) : 0.0f;
   }
-  if (l.type == LightType::Spot) t[4] = l.direction.x, t[5] = l.direction.y, t[6] = l.direction.z;
+  const glm::vec3 axis = l.type == LightType::Spot ? l.direction : glm::vec3(0.0f);
+  t[4] = axis.x, t[5] = axis.y, t[6] = axis.z;
   const SpotConeTerms cone = spotConeTerms(l);
   t[7] = cone.scale;
   t[8] = radiant.r, t[9] = radiant.g, t[10] = radiant.b;
@@ -67,9 +68,9 @@ PackedLights packLights(const std::vector<Light>& lights) {
 // Fewer lights than this a thread are packed on one.
 constexpr std::size_t kLightsPerThread = 65536;
 
-std::vector<float> packLightTexels(const std::vector<Light>& lights,
-                                   const std::vector<int>& order) {
-  std::vector<float> out(order.size() * layout::kFloatsPerLight, 0.0f);
+UninitialisedVector<float> packLightTexels(const std::vector<Light>& lights,
+                                           const std::vector<int>& order) {
+  UninitialisedVector<float> out(order.size() * layout::kFloatsPerLight);  // written whole below
   runOnShares(sharesOf(order.size(), kLightsPerThread), order.size(),
               [&](int, std::size_t from, std::size_t to) {
                 for (std::size_t i = from; i < to; ++i)

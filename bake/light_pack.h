@@ -2,6 +2,7 @@
 // Packs scene lights into the light texture (see bake/light_texture_layout.h).
 #include <vector>
 
+#include "base/uninitialised.h"
 #include "scene/scene.h"
 
 namespace manylight {
@@ -16,15 +17,16 @@ struct LightOrder {
 LightOrder lightOrder(const std::vector<Light>& lights);
 
 struct PackedLights {
-  std::vector<float> texels;  // kFloatsPerLight floats per light
-  int pointStart = 0;         // first point light; directional lights come before it
-  int spotStart = 0;          // first spot light; point lights come before it
+  UninitialisedVector<float> texels;  // kFloatsPerLight floats per light
+  int pointStart = 0;                 // first point light; directional lights come before it
+  int spotStart = 0;                  // first spot light; point lights come before it
 };
 
 // Packs `lights` in lightOrder(lights).
 PackedLights packLights(const std::vector<Light>& lights);
 // The texels of lights[order[0]], lights[order[1]], … (kFloatsPerLight floats each).
-std::vector<float> packLightTexels(const std::vector<Light>& lights, const std::vector<int>& order);
+UninitialisedVector<float> packLightTexels(const std::vector<Light>& lights,
+                                           const std::vector<int>& order);
 
 // A spot's cone as the light texture holds it: the shader's falloff is
 // smoothstep(clamp(cos · scale + offset, 0, 1)), cos to the spot's direction.

@@ -17,24 +17,14 @@ int typeIndex(LightType type) {
   return type == LightType::Directional ? 0 : type == LightType::Point ? 1 : 2;
 }
 
-// The intensities the shader decodes: internal, non-empty nodes (leaves are exact).
-std::vector<glm::vec3> decodedIntensities(const std::vector<LightTree>& trees) {
-  std::vector<glm::vec3> colours;
-  for (const LightTree& tree : trees) {
-    for (int i = 0; i < tree.firstLeaf(); ++i) {
-      if (!tree.nodes[i].empty()) colours.push_back(tree.nodes[i].intensity);
-    }
-  }
-  return colours;
-}
-
 // Fewer nodes than this a thread are packed on one.
 constexpr std::size_t kNodesPerThread = 65536;
 
-// Node i of `tree` (type index t) into its words at `w`.
-void packNode(const LightTree& tree, int i, int t, const NodeColourCoder& colour,
-              std::uint32_t* w) {
+// Node i of `tree` (type index t) into its `stride` words at `w`.
+void packNode(const LightTree& tree, int i, int t, const NodeColourCoder& colour, std::uint32_t* w,
+              std::size_t stride) {
   const LightTreeNode& n = tree.nodes[std::size_t(i)];
+  std::fill(w, w + stride, 0u);
   w[0] = wordOf(n.boxMin.x), w[1] = wordOf(n.boxMin.y), w[2] = wordOf(n.boxMin.z);
   w[3] = std::uint32_t(n.representative);
   if (i < tree.firstLeaf()) {
@@ -58,25 +48,43 @@ void packNode(const LightTree& tree, int i, int t, const NodeColourCoder& colour
 }  // namespace
 
 PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding coding) {
-  const std::vector<glm::vec3> colours = decodedIntensities(trees);
-  PackedTrees packed{
-      {}, {0, 0, 0}, {0, 0, 0}, NodeColourCoder(coding, colours, NodeColourCoder::Unmeasured{})};
-  std::size_t words = 0;
+  // The intensities the shader decodes, of every internal node of every tree in turn (leaves
+  // are exact). An empty node's is black, which the coder neither fits nor measures.
+  std::size_t internal = 0, used = 0;
+  std::vector<std::size_t> firstColour;
   for (const LightTree& tree : trees) {
-    words += tree.nodes.size() *
-             (tree.type == LightType::Spot ? layout::kSpotNodeWords : layout::kNodeWords);
+    firstColour.push_back(internal);
+    internal += std::size_t(tree.firstLeaf());
+    used += tree.nodes.size() *
+            (tree.type == LightType::Spot ? layout::kSpotNodeWords : layout::kNodeWords);
   }
-  words = (words + 3) / 4 * 4;
+  const std::size_t words = (used + 3) / 4 * 4;
   if (words > std::size_t(1) << 31)
     throw BakeError("the light trees need " + std::to_string(words) + " words, more than 2^31");
-  packed.words.assign(words, 0u);
+  std::vector<glm::vec3> colours(internal);
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    const std::vector<LightTreeNode>& nodes = trees[t].nodes;
+    glm::vec3* const out = colours.data() + firstColour[t];
+    const std::size_t count = std::size_t(trees[t].firstLeaf());
+    runOnShares(sharesOf(count, kNodesPerThread), count,
+                [&](int, std::size_t from, std::size_t to) {
+                  for (std::size_t i = from; i < to; ++i) out[i] = nodes[i].intensity;
+                });
+  }
+  PackedTrees packed{
+      {}, {0, 0, 0}, {0, 0, 0}, NodeColourCoder(coding, colours, NodeColourCoder::Unmeasured{})};
+  packed.words.resize(words);  // each node writes all its words; the padding is zeroed here
+  std::fill(packed.words.begin() + std::ptrdiff_t(used), packed.words.end(), 0u);
+  std::vector<std::uint32_t> colourWords(internal);  // in the colours' order
   std::size_t next = 0;
-  for (const LightTree& tree : trees) {
+  for (std::size_t k = 0; k < trees.size(); ++k) {
+    const LightTree& tree = trees[k];
     const int t = typeIndex(tree.type);
     packed.base[t] = int(next);
     packed.leaves[t] = tree.leafCount;
     const std::size_t stride = t == 2 ? layout::kSpotNodeWords : layout::kNodeWords;
     std::uint32_t* const out = &packed.words[next];
+    std::uint32_t* const colourOut = colourWords.data() + firstColour[k];
     // Nodes write disjoint words: shares of them are packed on threads at once. Internal
     // nodes (which encode a colour) and leaves are shared apart, so that each thread gets
     // as many of the costly ones.
@@ -87,30 +95,23 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
       const std::size_t begin = range.first, count = range.second - range.first;
       runOnShares(sharesOf(count, kNodesPerThread), count,
                   [&](int, std::size_t from, std::size_t to) {
-                    for (std::size_t i = begin + from; i < begin + to; ++i)
-                      packNode(tree, int(i), t, packed.colour, out + stride * i);
+                    for (std::size_t i = begin + from; i < begin + to; ++i) {
+                      std::uint32_t* const w = out + stride * i;
+                      packNode(tree, int(i), t, packed.colour, w, stride);
+                      if (i < firstLeaf) colourOut[i] = w[layout::kColourWord];
+                    }
                   });
     }
     next += stride * tree.nodes.size();
-  }
-  // The coder measured on the words just packed, in decodedIntensities' order.
-  std::vector<std::uint32_t> colourWords;
-  colourWords.reserve(colours.size());
-  for (const LightTree& tree : trees) {
-    const int t = typeIndex(tree.type);
-    const std::size_t stride = t == 2 ? layout::kSpotNodeWords : layout::kNodeWords;
-    for (int i = 0; i < tree.firstLeaf(); ++i) {
-      if (!tree.nodes[std::size_t(i)].empty())
-        colourWords.push_back(packed.words[std::size_t(packed.base[t]) + stride * std::size_t(i) +
-                                           layout::kColourWord]);
-    }
   }
   packed.colour.measure(colours, colourWords);
   return packed;
 }
 
 PackedTrees bakeLightTrees(const std::vector<Light>& lights, const TreeOptions& options) {
-  return packLightTrees(buildLightTrees(lights, options), options.nodeColour);
+  auto tr = buildLightTrees(lights, options);
+  auto p = packLightTrees(tr, options.nodeColour);
+  return p;
 }
 
 }  // namespace manylight

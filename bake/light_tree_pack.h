@@ -5,11 +5,12 @@
 
 #include "bake/light_tree.h"
 #include "bake/node_colour.h"
+#include "base/uninitialised.h"
 
 namespace manylight {
 
 struct PackedTrees {
-  std::vector<std::uint32_t> words;  // a whole number of texels (4 words each)
+  UninitialisedVector<std::uint32_t> words;  // a whole number of texels (4 words each)
   // Per light type (0 directional, 1 point, 2 spot): first word and leaf count (0: no tree).
   int base[3] = {0, 0, 0};
   int leaves[3] = {0, 0, 0};

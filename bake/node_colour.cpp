@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "base/parallel.h"
+#include "base/uninitialised.h"
 #include "scene/srgb.h"
 
 namespace manylight {
@@ -75,7 +76,7 @@ std::uint32_t encodeFitted(glm::dvec3 v, const PowerFit& fit) {
 }
 
 // The 99th percentile of `v` less its `skipped` values that lie below all the others.
-double percentile99(std::vector<double>& v, std::size_t skipped) {
+double percentile99(UninitialisedVector<double>& v, std::size_t skipped) {
   const std::size_t n = v.size() - skipped;
   if (n == 0) return 0.0;
   const std::size_t k = std::min(n - 1, std::size_t(std::ceil(0.99 * double(n))) - 1);
@@ -142,8 +143,8 @@ void NodeColourCoder::measure(const std::vector<glm::vec3>& colours,
     double eta = 0.0;
     std::size_t black = 0;
   };
-  std::vector<double> errors[3];
-  for (std::vector<double>& e : errors) e.resize(colours.size());
+  UninitialisedVector<double> errors[3];  // every element is written below
+  for (UninitialisedVector<double>& e : errors) e.resize(colours.size());
   std::vector<Share> shares(std::size_t(sharesOf(colours.size(), kColoursPerThread)));
   runOnShares(int(shares.size()), colours.size(), [&](int t, std::size_t from, std::size_t to) {
     Share& share = shares[std::size_t(t)];
@@ -151,7 +152,7 @@ void NodeColourCoder::measure(const std::vector<glm::vec3>& colours,
       const glm::vec3& c = colours[i];
       const float m = largest(c);
       if (!(m > 0.0f)) {
-        for (std::vector<double>& e : errors) e[i] = -1.0;
+        for (UninitialisedVector<double>& e : errors) e[i] = -1.0;
         ++share.black;
         continue;
       }

@@ -133,7 +133,7 @@ void GpuScene::replaceLights(const std::vector<Light>& lights) {
   // The light texture holds exactly the scene's lights (one zero light when there are none,
   // so the sampler is always complete).
   PackedLights packedLights = packLights(lights);
-  std::vector<float>& packed = packedLights.texels;
+  auto& packed = packedLights.texels;
   const std::size_t texels = std::max<std::size_t>(lights.size(), 1) * layout::kTexelsPerLight;
   packed.resize(texels * 4, 0.0f);
   pointStart_ = packedLights.pointStart;

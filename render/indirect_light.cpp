@@ -34,7 +34,7 @@ void renderFlux(const GBuffer& rsm, const Light& light, const RsmView& view) {
   bindSampler(p, "uAlbedo", GL_TEXTURE_2D, rsm.target(GBuffer::kAlbedo).id(), 2);
   // The light texture's sampler is not read, but may not share a unit with the others.
   glUniform1i(p.uniform("uLights"), 3);
-  const std::vector<float> t = packLightTexels({light}, {0});
+  const auto t = packLightTexels({light}, {0});
   glUniform4fv(p.uniform("uLight0"), 1, &t[0]);
   glUniform4fv(p.uniform("uLight1"), 1, &t[4]);
   glUniform4fv(p.uniform("uLight2"), 1, &t[8]);

@@ -16,7 +16,7 @@ using namespace gl::api;
 LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& lights,
                                  const GBuffer& gbuffer, bool distance)
     : distance_(distance), width_(gbuffer.width()), height_(gbuffer.height()) {
-  std::vector<std::uint32_t>& words = packed.words;
+  auto& words = packed.words;
   const std::size_t nodeWords = words.size();
   if (words.empty()) words.assign(4, 0u);  // no lights: keep the sampler complete
   nodes_ = gl::uploadTextureBuffer(words.data(), words.size() / 4, GL_RGBA32UI,

@@ -13,8 +13,8 @@ using namespace gl::api;
 
 namespace {
 
-template <typename T>
-gl::TextureBuffer upload(const std::vector<T>& data, std::size_t perTexel, GLenum format,
+template <typename T, typename Allocator>
+gl::TextureBuffer upload(const std::vector<T, Allocator>& data, std::size_t perTexel, GLenum format,
                          const std::string& what) {
   static const T zeros[4] = {};  // an empty table: one texel keeps the sampler complete
   if (data.empty()) return gl::uploadTextureBuffer(zeros, 1, format, what);

@@ -70,7 +70,7 @@ TEST(Shading, LightPackLayoutMatchesTheShadingModel) {
   const PackedLights packed = packLights({spot, sun});
   EXPECT_EQ(packed.pointStart, 1);  // directional first
   EXPECT_EQ(packed.spotStart, 1);
-  const std::vector<float>& all = packed.texels;
+  const auto& all = packed.texels;
   ASSERT_EQ(all.size(), 2u * layout::kFloatsPerLight);
   // The spot light is second: the directional one comes first.
   const std::vector<float> t(all.begin() + layout::kFloatsPerLight, all.end());
