@@ -53,106 +53,165 @@ Span readArray(od::document& doc, od::value v, std::string_view json, const std:
   return s;
 }
 
-// The two arrays that grow with the light count, read after the rest of the document, each
-// by a parser of its own: at once, on two threads, when both are large.
+// The two arrays that grow with the light count.
 enum class Bulk { Nodes, Lights };
-
-struct Deferred {
-  Bulk kind;
-  Span span;
-};
 
 // Arrays whose text is shorter than this are read on the calling thread.
 constexpr std::size_t kThreadBytes = std::size_t(1) << 20;
 
-// The array `v`, checked to be one, skipped; its span is read later.
-Span deferArray(od::value v, std::string_view json, const std::string& what) {
-  od::array a;
-  check(v.get_array().get(a), [&] { return what + " is not an array"; });
-  std::string_view raw;
-  check(a.raw_json().get(raw));
-  const std::size_t begin = std::size_t(raw.data() - json.data());
-  std::size_t end = begin + raw.size();
-  while (end > begin && json[end - 1] != ']') --end;  // the view runs to the next token
-  if (end <= begin || json[begin] != '[') throw Syntax{simdjson::TAPE_ERROR};
-  return {begin, end};
+// Empties `out`'s records of `kind` and makes room for `count` of them.
+void restart(Bulk kind, std::size_t count, BulkArrays& out) {
+  if (kind == Bulk::Nodes) {
+    out.nodes.clear();
+    out.children.clear();
+    out.matrices.clear();
+    out.nodes.reserve(count);
+  } else {
+    out.lights.clear();
+    out.otherTypes.clear();
+    out.lights.reserve(count);
+  }
 }
 
-// Reads the array at `span` of `json` (padded to `capacity`) with a parser of its own.
-void readDeferred(std::string_view json, std::size_t capacity, const Deferred& d, BulkArrays& out) {
-  od::parser parser;
-  od::document doc;
-  check(
-      parser.iterate(json.data() + d.span.begin, d.span.end - d.span.begin, capacity - d.span.begin)
-          .get(doc));
-  od::array a;
-  check(doc.get_array().get(a));
-  const auto reserve = [&](std::size_t count) {
-    if (d.kind == Bulk::Nodes) {
-      out.nodes.clear();
-      out.children.clear();
-      out.matrices.clear();
-      out.nodes.reserve(count);
-    } else {
-      out.lights.clear();
-      out.otherTypes.clear();
-      out.lights.reserve(count);
-    }
-  };
-  readElements(a, reserve, [&](od::value x, std::size_t i) {
-    (d.kind == Bulk::Nodes ? readNode : readLight)(x, i, out);
-  });
+// Reads element i of an array of `kind` into `out`.
+void readElement(Bulk kind, od::value x, std::size_t i, BulkArrays& out) {
+  (kind == Bulk::Nodes ? readNode : readLight)(x, i, out);
 }
 
-// The deferred arrays of one kind, in order (a later one replaces an earlier one's records,
-// as for repeated keys); the offset of the first that failed, and why, if one did.
-struct KindOutcome {
-  std::size_t failedAt = 0;
-  std::exception_ptr error;
+// The first bulk array is read in pieces of about this much text, each copied between
+// brackets into a buffer of its reader's own: its parser then indexes one piece, not the
+// whole array again (the walk's index already covers it: a second index of the array would
+// add a third to the loader's peak memory).
+constexpr std::size_t kPieceBytes = std::size_t(4) << 20;
+
+// An array as walkArray found it.
+struct Walked {
+  Span span;
+  std::size_t count = 0;                // elements
+  std::vector<std::size_t> pieceStart;  // per piece, the text offset of its first element
+  std::vector<std::size_t> pieceFirst;  // and that element's index
 };
 
-KindOutcome readKind(std::string_view json, std::size_t capacity,
-                     const std::vector<Deferred>& deferred, Bulk kind, BulkArrays& out) {
-  for (const Deferred& d : deferred) {
-    if (d.kind != kind) continue;
-    try {
-      readDeferred(json, capacity, d, out);
-    } catch (...) {
-      return {d.span.begin, std::current_exception()};
+// Walks the array `v` (one, or `what` is refused) element by element without reading them.
+Walked walkArray(od::document& doc, od::value v, std::string_view json, const std::string& what) {
+  const char* start = nullptr;
+  check(v.current_location().get(start));
+  od::array a;
+  check(v.get_array().get(a), [&] { return what + " is not an array"; });
+  Walked w;
+  for (auto element : a) {
+    od::value x;
+    check(element.get(x));
+    const char* at = nullptr;
+    check(x.current_location().get(at));
+    const std::size_t offset = std::size_t(at - json.data());
+    if (w.count == 0 || offset - w.pieceStart.back() >= kPieceBytes) {
+      w.pieceStart.push_back(offset);
+      w.pieceFirst.push_back(w.count);
+    }
+    ++w.count;
+  }
+  w.span = {std::size_t(start - json.data()), arrayEnd(doc, json)};
+  if (w.span.end <= w.span.begin || json[w.span.begin] != '[') throw Syntax{simdjson::TAPE_ERROR};
+  return w;
+}
+
+// Reads the array walkArray walked, piece by piece, into `out`.
+void readPieces(std::string_view json, const Walked& w, Bulk kind, BulkArrays& out) {
+  restart(kind, w.count, out);
+  od::parser parser;
+  std::string piece;
+  for (std::size_t j = 0; j < w.pieceStart.size(); ++j) {
+    // The piece's elements: up to the next piece's separator, or to the array's ']'.
+    std::size_t end = w.span.end - 1;
+    if (j + 1 < w.pieceStart.size()) {
+      end = w.pieceStart[j + 1];
+      while (end > w.pieceStart[j] && json[end - 1] != ',') --end;
+      --end;
+    }
+    piece.assign(1, '[');
+    piece.append(json.substr(w.pieceStart[j], end - w.pieceStart[j]));
+    piece += ']';
+    const std::size_t length = piece.size();
+    piece.append(simdjson::SIMDJSON_PADDING, ' ');
+    od::document doc;
+    check(parser.iterate(piece.data(), length, piece.size()).get(doc));
+    od::array a;
+    check(doc.get_array().get(a));
+    std::size_t i = w.pieceFirst[j];
+    for (auto element : a) {
+      od::value x;
+      check(element.get(x));
+      readElement(kind, x, i++, out);
     }
   }
-  return {};
 }
 
-// Reads every deferred array into `out`; throws what the first failing one (in the text's
-// order) threw, as one reading the text from the start would have.
-void readAllDeferred(std::string_view json, std::size_t capacity,
-                     const std::vector<Deferred>& deferred, BulkArrays& out) {
-  std::size_t bytes[2] = {0, 0};
-  for (const Deferred& d : deferred) bytes[int(d.kind)] += d.span.end - d.span.begin;
-  BulkArrays lights;  // the lights' records, apart while two threads fill them
-  std::future<KindOutcome> second;
-  if (bytes[0] >= kThreadBytes && bytes[1] >= kThreadBytes) {
-    second = std::async(std::launch::async,
-                        [&] { return readKind(json, capacity, deferred, Bulk::Lights, lights); });
-  }
-  KindOutcome outcomes[2];
-  outcomes[0] = readKind(json, capacity, deferred, Bulk::Nodes, out);
-  if (second.valid()) {
-    outcomes[1] = second.get();
-    out.lights = std::move(lights.lights);
-    out.otherTypes = std::move(lights.otherTypes);
-  } else {
-    outcomes[1] = readKind(json, capacity, deferred, Bulk::Lights, out);
-  }
-  const KindOutcome* first = nullptr;
-  for (const KindOutcome& o : outcomes) {
-    if (o.error && (!first || o.failedAt < first->failedAt)) first = &o;
-  }
-  if (first) std::rethrow_exception(first->error);
-}
+// The bulk arrays as the walk of the top level meets them. The first is walked past element
+// by element (its pieces noted), then read in its pieces, on a thread of its own when large,
+// started at once; every later one is read in place by the walk's parser, whose index already
+// covers it. So the two are read at once (on the 1,048,576-light GLB the lights come first:
+// the nodes, the larger, are read in place), and neither needs an index of its whole text
+// besides the walk's. A later array of a kind replaces an earlier one's records, as for
+// repeated keys.
+class BulkReader {
+ public:
+  BulkReader(std::string_view json, BulkArrays& out) : json_(json), out_(out) {}
 
-void readLightsExtension(od::value v, std::string_view json, std::vector<Deferred>& deferred,
+  // Reads the array `v` of `kind`, named `what` in errors; returns its span of the text.
+  Span read(od::document& doc, od::value v, Bulk kind, const std::string& what) {
+    if (met_) {
+      replaced_ = replaced_ || (thread_.valid() && kind == threadKind_);
+      return readArray(
+          doc, v, json_, what, [&](std::size_t count) { restart(kind, count, out_); },
+          [&](od::value x, std::size_t i) { readElement(kind, x, i, out_); });
+    }
+    met_ = true;
+    const Walked walked = walkArray(doc, v, json_, what);
+    if (walked.span.end - walked.span.begin < kThreadBytes) {
+      readPieces(json_, walked, kind, out_);
+      return walked.span;
+    }
+    threadKind_ = kind;
+    thread_ = std::async(std::launch::async, [this, kind, walked] {
+      try {
+        readPieces(json_, walked, kind, threadOut_);
+      } catch (...) {
+        return std::current_exception();
+      }
+      return std::exception_ptr();
+    });
+    return walked.span;
+  }
+
+  // Waits for the thread and takes its records (unless a later array replaced them). Its
+  // array comes before any other in the text: its error, if it had one, is the one a reader
+  // from the start would meet first, and is thrown here.
+  void finish() {
+    if (!thread_.valid()) return;
+    if (const std::exception_ptr error = thread_.get()) std::rethrow_exception(error);
+    if (replaced_) return;
+    if (threadKind_ == Bulk::Nodes) {
+      out_.nodes = std::move(threadOut_.nodes);
+      out_.children = std::move(threadOut_.children);
+      out_.matrices = std::move(threadOut_.matrices);
+    } else {
+      out_.lights = std::move(threadOut_.lights);
+      out_.otherTypes = std::move(threadOut_.otherTypes);
+    }
+  }
+
+ private:
+  std::string_view json_;
+  BulkArrays& out_;
+  bool met_ = false;       // the first bulk array has been met
+  bool replaced_ = false;  // a later array of the thread's kind was read in place
+  Bulk threadKind_ = Bulk::Nodes;
+  BulkArrays threadOut_;
+  std::future<std::exception_ptr> thread_;  // waits for its thread when destroyed
+};
+
+void readLightsExtension(od::document& doc, od::value v, BulkReader& bulk,
                          std::vector<Span>& spans) {
   od::object o;
   if (v.get_object().get(o) != simdjson::SUCCESS) return;  // tinygltf ignores it too
@@ -161,8 +220,7 @@ void readLightsExtension(od::value v, std::string_view json, std::vector<Deferre
     if (key != "lights") continue;
     od::value lights;
     check(field.value().get(lights));
-    spans.push_back(deferArray(lights, json, "KHR_lights_punctual.lights"));
-    deferred.push_back({Bulk::Lights, spans.back()});
+    spans.push_back(bulk.read(doc, lights, Bulk::Lights, "KHR_lights_punctual.lights"));
   }
 }
 
@@ -193,8 +251,8 @@ void readScene(od::document& doc, od::value v, std::string_view json,
   }
 }
 
-void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
-                  std::vector<Deferred>& deferred, std::vector<Span>& spans) {
+void readTopLevel(od::document& doc, std::string_view json, SplitJson& out, BulkReader& bulk,
+                  std::vector<Span>& spans) {
   od::object top;
   check(doc.get_object().get(top));
   for (auto field : top) {
@@ -202,8 +260,7 @@ void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
     od::value value;
     check(field.value().get(value));
     if (key == "nodes") {
-      spans.push_back(deferArray(value, json, "nodes"));
-      deferred.push_back({Bulk::Nodes, spans.back()});
+      spans.push_back(bulk.read(doc, value, Bulk::Nodes, "nodes"));
     } else if (key == "scenes" && isArray(value)) {
       out.bulk.sceneNodes.clear();
       od::array scenes;
@@ -222,7 +279,7 @@ void readTopLevel(od::document& doc, std::string_view json, SplitJson& out,
         if (name != "KHR_lights_punctual") continue;
         od::value lights;
         check(ext.value().get(lights));
-        readLightsExtension(lights, json, deferred, spans);
+        readLightsExtension(doc, lights, bulk, spans);
       }
     }
   }
@@ -237,16 +294,18 @@ SplitJson splitJson(std::string_view text, std::size_t capacity) {
   capacity -= bom.size();
   SplitJson out;
   std::vector<Span> spans;
-  std::vector<Deferred> deferred;
   try {
-    {
-      // This parser's index (4 bytes a token) is freed before the deferred arrays' own.
+    BulkReader bulk(json, out.bulk);
+    try {
       od::parser parser;
       od::document doc;
       check(parser.iterate(json.data(), json.size(), capacity).get(doc));
-      readTopLevel(doc, json, out, deferred, spans);
+      readTopLevel(doc, json, out, bulk, spans);
+    } catch (...) {
+      bulk.finish();  // the thread's error comes first in the text
+      throw;
     }
-    readAllDeferred(json, capacity, deferred, out.bulk);
+    bulk.finish();
   } catch (const Syntax& s) {
     SplitJson failed;
     failed.syntaxError = simdjson::error_message(s.code);

@@ -147,6 +147,46 @@ TEST(GltfBulk, LargeArraysReadOnTwoThreadsAsOnOne) {
   }
 }
 
+// The first large array is read in pieces of about 4 MB: across their seams every record
+// is its element's, children ranges stay those of their nodes, and a fault in a later piece
+// names its element's index in the whole array.
+TEST(GltfBulk, AnArrayReadInPiecesGivesTheRecordsOfOneRead) {
+  const int count = 70000;  // about 6 MB of nodes: two pieces
+  std::string nodes = "[";
+  for (int i = 0; i < count; ++i) {
+    nodes += std::string(i ? ",\n  " : "") + R"({"translation": [)" + std::to_string(i) +
+             R"(, 0.5, 0], "children": [)" + std::to_string((i + 1) % count) + "," +
+             std::to_string((i + 2) % count) + "]}";
+  }
+  nodes += "]";
+  const std::string lights = R"([{"type": "point"}])";
+  const std::string nodesFirst = R"({"nodes": )" + nodes +
+                                 R"(, "extensions": {"KHR_lights_punctual": {"lights": )" + lights +
+                                 "}}}";
+  const gltf::SplitJson s = split(nodesFirst);
+  ASSERT_TRUE(s.parsed);
+  ASSERT_EQ(s.bulk.nodes.size(), std::size_t(count));
+  ASSERT_EQ(s.bulk.children.size(), std::size_t(2 * count));
+  for (int i = 0; i < count; ++i) {
+    const gltf::NodeRecord& n = s.bulk.nodes[std::size_t(i)];
+    ASSERT_EQ(n.translation[0], double(i)) << i;
+    ASSERT_EQ(n.childCount, 2u) << i;
+    ASSERT_EQ(*s.bulk.childrenBegin(n), (i + 1) % count) << i;
+    ASSERT_EQ(*(s.bulk.childrenEnd(n) - 1), (i + 2) % count) << i;
+  }
+  ASSERT_EQ(s.bulk.lights.size(), 1u);
+  std::string faulty = nodesFirst;
+  const std::string late = R"({"translation": [)" + std::to_string(count - 5) + ",";
+  faulty.replace(faulty.find(late), late.size(), R"({"translation": ["x",)");
+  try {
+    split(faulty);
+    ADD_FAILURE() << "split";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "node " + std::to_string(count - 5) + ": translation must be an array of 3 numbers");
+  }
+}
+
 // Keys are read as written: a `scenes` key written with escapes, which tinygltf would read,
 // is refused in one line rather than shown without its roots.
 TEST(GltfBulk, AnEscapedScenesKeyIsRefused) {
