@@ -163,7 +163,7 @@ void readChildren(od::value v, std::size_t i, NodeRecord& n, BulkArrays& out) {
 }  // namespace
 
 // A matrix wins over T, R, S, which glTF forbids beside it.
-void readNode(od::value v, std::size_t i, BulkArrays& out) {
+NodeRecord readNode(od::value v, std::size_t i, BulkArrays& out) {
   od::object o;
   check(v.get_object().get(o), [&] { return "node " + str(i) + ": not a JSON object"; });
   NodeRecord n;
@@ -211,7 +211,7 @@ void readNode(od::value v, std::size_t i, BulkArrays& out) {
     n = m;
     out.matrices.push_back(matrix);
   }
-  out.nodes.push_back(n);
+  return n;
 }
 
 namespace {
@@ -244,7 +244,7 @@ PunctualType typeOf(std::string_view type) {
 }  // namespace
 
 // A spot light needs its spot object, as tinygltf required.
-void readLight(od::value v, std::size_t i, BulkArrays& out) {
+LightRecord readLight(od::value v, std::size_t i, BulkArrays& out) {
   od::object o;
   check(v.get_object().get(o), [&] { return "light " + str(i) + ": not a JSON object"; });
   LightRecord l;
@@ -278,7 +278,7 @@ void readLight(od::value v, std::size_t i, BulkArrays& out) {
   if (!hasType) throw SceneError("light " + str(i) + ": no type");
   if (l.type == PunctualType::Spot && !hasSpot)
     throw SceneError("light " + str(i) + ": a spot light without a spot object");
-  out.lights.push_back(l);
+  return l;
 }
 
 bool isArray(od::value v) {

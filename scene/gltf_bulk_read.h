@@ -114,10 +114,11 @@ void validate(od::value v, int depth = 0);
 
 bool isArray(od::value v);
 
-// Node `i` appended to out.nodes (its children to out.children, a matrix to out.matrices).
-void readNode(od::value v, std::size_t i, BulkArrays& out);
-// Light `i` appended to out.lights.
-void readLight(od::value v, std::size_t i, BulkArrays& out);
+// Node `i`; its children are appended to out.children and a matrix to out.matrices (the
+// record's firstChild and matrix index those).
+NodeRecord readNode(od::value v, std::size_t i, BulkArrays& out);
+// Light `i`; a type glTF does not define goes to out.otherTypes.
+LightRecord readLight(od::value v, std::size_t i, BulkArrays& out);
 // A root of a scene, as tinygltf's integer arrays take one: a JSON integer, cast to int.
 // After the first value that is not one, tinygltf keeps none; `stopped` says so.
 void readSceneNode(od::value x, std::vector<std::int32_t>& roots, bool& stopped);

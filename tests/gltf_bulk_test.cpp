@@ -147,16 +147,19 @@ TEST(GltfBulk, LargeArraysReadOnTwoThreadsAsOnOne) {
   }
 }
 
-// The first large array is read in pieces of about 4 MB: across their seams every record
-// is its element's, children ranges stay those of their nodes, and a fault in a later piece
-// names its element's index in the whole array.
+// Bulk arrays are read in pieces of about 4 MB, on all cores: across their seams every record
+// is its element's, children and matrices stay those of their nodes, and a fault in a later
+// piece names its element's index in the whole array.
 TEST(GltfBulk, AnArrayReadInPiecesGivesTheRecordsOfOneRead) {
   const int count = 70000;  // about 6 MB of nodes: two pieces
   std::string nodes = "[";
   for (int i = 0; i < count; ++i) {
-    nodes += std::string(i ? ",\n  " : "") + R"({"translation": [)" + std::to_string(i) +
-             R"(, 0.5, 0], "children": [)" + std::to_string((i + 1) % count) + "," +
-             std::to_string((i + 2) % count) + "]}";
+    const std::string x = std::to_string(i);
+    const std::string transform =
+        i % 1000 == 7 ? R"("matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, )" + x + ", 0.5, 0, 1]"
+                      : R"("translation": [)" + x + ", 0.5, 0]";
+    nodes += std::string(i ? ",\n  " : "") + "{" + transform + R"(, "children": [)" +
+             std::to_string((i + 1) % count) + "," + std::to_string((i + 2) % count) + "]}";
   }
   nodes += "]";
   const std::string lights = R"([{"type": "point"}])";
@@ -169,11 +172,17 @@ TEST(GltfBulk, AnArrayReadInPiecesGivesTheRecordsOfOneRead) {
   ASSERT_EQ(s.bulk.children.size(), std::size_t(2 * count));
   for (int i = 0; i < count; ++i) {
     const gltf::NodeRecord& n = s.bulk.nodes[std::size_t(i)];
-    ASSERT_EQ(n.translation[0], double(i)) << i;
+    if (i % 1000 == 7) {
+      ASSERT_GE(n.matrix, 0) << i;
+      ASSERT_EQ(s.bulk.matrices[std::size_t(n.matrix)][12], double(i)) << i;
+    } else {
+      ASSERT_EQ(n.translation[0], double(i)) << i;
+    }
     ASSERT_EQ(n.childCount, 2u) << i;
     ASSERT_EQ(*s.bulk.childrenBegin(n), (i + 1) % count) << i;
     ASSERT_EQ(*(s.bulk.childrenEnd(n) - 1), (i + 2) % count) << i;
   }
+  ASSERT_EQ(s.bulk.matrices.size(), std::size_t(count / 1000));
   ASSERT_EQ(s.bulk.lights.size(), 1u);
   std::string faulty = nodesFirst;
   const std::string late = R"({"translation": [)" + std::to_string(count - 5) + ",";
