@@ -145,8 +145,9 @@ void PieceReader::add(BulkArray array) {
 
 void PieceReader::startPool() {
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned readers = std::clamp(cores, 2u, kMaxReaders);
   try {
-    for (unsigned k = 1; k < std::max(cores, 2u); ++k) pool_.emplace_back([this] { work(); });
+    for (unsigned k = 1; k < readers; ++k) pool_.emplace_back([this] { work(); });
   } catch (const std::exception&) {
     // No more threads (a process or memory limit): the caller reads the rest in finish().
   }

@@ -28,6 +28,9 @@ enum class Bulk { Nodes, Lights };
 constexpr std::size_t kPieceBytes = std::size_t(4) << 20;
 // Pieces are read on the calling thread alone until this much text waits.
 constexpr std::size_t kThreadBytes = std::size_t(1) << 20;
+// Threads reading pieces at most, the caller's included: each holds a piece's copy and index
+// (about 6 MB), and more than a few share the memory's bandwidth.
+constexpr unsigned kMaxReaders = 8;
 
 // Consecutive elements of a bulk array.
 struct Piece {
@@ -61,7 +64,8 @@ class PieceReader {
   ~PieceReader();  // stops the pool (pieces not yet taken are left unread)
 
   // Queues the pieces of `array`, the next bulk array in the text; the pool starts once
-  // kThreadBytes of text wait, with a thread for each core but the caller's.
+  // kThreadBytes of text wait, with a thread for each core but the caller's (at least one,
+  // kMaxReaders − 1 at most).
   void add(BulkArray array);
   // Reads the pieces left on this thread too, then waits for the pool. Throws the error of
   // the first faulty piece in the text's order; else moves the records of the last array of
