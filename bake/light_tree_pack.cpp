@@ -109,9 +109,7 @@ PackedTrees packLightTrees(const std::vector<LightTree>& trees, NodeColourCoding
 }
 
 PackedTrees bakeLightTrees(const std::vector<Light>& lights, const TreeOptions& options) {
-  auto tr = buildLightTrees(lights, options);
-  auto p = packLightTrees(tr, options.nodeColour);
-  return p;
+  return packLightTrees(buildLightTrees(lights, options), options.nodeColour);
 }
 
 }  // namespace manylight
