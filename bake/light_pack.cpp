@@ -1,6 +1,7 @@
 #include "bake/light_pack.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "bake/light_texture_layout.h"
@@ -9,20 +10,42 @@
 
 namespace manylight {
 
-// One pass counting the types, one placing each light (a counting sort, stable).
+// Fewer lights than this a thread are ordered or packed on one.
+constexpr std::size_t kLightsPerThread = 65536;
+
+// A counting sort, stable, in shares: each share counts its lights' types, then places them
+// after the earlier shares' lights of each type.
 LightOrder lightOrder(const std::vector<Light>& lights) {
   const auto rank = [](LightType t) {
     return t == LightType::Directional ? 0 : t == LightType::Point ? 1 : 2;
   };
-  std::size_t counts[3] = {0, 0, 0};
-  for (const Light& l : lights) ++counts[rank(l.type)];
+  const int shares = sharesOf(lights.size(), kLightsPerThread);
+  std::vector<std::array<std::size_t, 3>> counts(std::size_t(shares), {0, 0, 0});
+  runOnShares(shares, lights.size(), [&](int k, std::size_t from, std::size_t to) {
+    std::array<std::size_t, 3> c = {0, 0, 0};  // local: the shares' counts share a cache line
+    for (std::size_t i = from; i < to; ++i) ++c[rank(lights[i].type)];
+    counts[std::size_t(k)] = c;
+  });
+  std::size_t total[3] = {0, 0, 0};
+  for (const auto& c : counts) {
+    for (int t = 0; t < 3; ++t) total[t] += c[t];
+  }
   LightOrder order;
-  order.pointStart = int(counts[0]);
-  order.spotStart = int(counts[0] + counts[1]);
-  order.scene.resize(counts[0] + counts[1] + counts[2]);
-  std::size_t next[3] = {0, counts[0], counts[0] + counts[1]};
-  for (std::size_t i = 0; i < lights.size(); ++i)
-    order.scene[next[rank(lights[i].type)]++] = int(i);
+  order.pointStart = int(total[0]);
+  order.spotStart = int(total[0] + total[1]);
+  order.scene.resize(lights.size());
+  std::size_t next[3] = {0, total[0], total[0] + total[1]};
+  for (auto& c : counts) {  // each share's first slot of each type
+    for (int t = 0; t < 3; ++t) {
+      const std::size_t n = c[t];
+      c[t] = next[t];
+      next[t] += n;
+    }
+  }
+  runOnShares(shares, lights.size(), [&](int k, std::size_t from, std::size_t to) {
+    std::array<std::size_t, 3> at = counts[std::size_t(k)];
+    for (std::size_t i = from; i < to; ++i) order.scene[at[rank(lights[i].type)]++] = int(i);
+  });
   return order;
 }
 
@@ -64,9 +87,6 @@ PackedLights packLights(const std::vector<Light>& lights) {
   packed.texels = packLightTexels(lights, order.scene);
   return packed;
 }
-
-// Fewer lights than this a thread are packed on one.
-constexpr std::size_t kLightsPerThread = 65536;
 
 UninitialisedVector<float> packLightTexels(const std::vector<Light>& lights,
                                            const std::vector<int>& order) {
