@@ -55,7 +55,8 @@ Camera resolveCamera(const Scene& scene, const RenderRequest& request, bool* fra
 // the frame settings. Needs a current context. Throws Error or gl::GlError.
 // A renderer for `lights`: a lightcuts method uploads `baked.trees`, the octree method
 // `baked.octree` (a baked file's), or, where it is null, what is baked here with `options`.
-// `bakeMs`: the milliseconds spent baking and uploading them (0 for the reference).
+// Trees baked here are built on other threads while the renderer uploads the scene. `bakeMs`:
+// the milliseconds from the start of baking them to their upload (0 for the reference).
 std::unique_ptr<Renderer> prepareRenderer(const Scene& scene, const std::vector<Light>& lights,
                                           int width, int height, Method method,
                                           const BakeOptions& options = {}, BakedLights baked = {},

@@ -49,6 +49,11 @@ Renderer::Renderer(const Scene& scene, const std::vector<Light>& lights, int wid
       if (!baked.octree) throw Error("octree needs the lights' baked octree");
       octree_ = std::make_unique<OctreeMethod>(*baked.octree, lights);
     } else {
+      PackedTrees waited;
+      if (!baked.trees && baked.pendingTrees) {
+        waited = baked.pendingTrees->get();
+        baked.trees = &waited;
+      }
       if (!baked.trees)
         throw Error(std::string(methodName(method)) + " needs the lights' baked trees");
       // A renderer takes the trees it is given: a second one given the same has none left.

@@ -2,6 +2,7 @@
 // The deferred renderer: a G-buffer pass, then the chosen method's lighting passes into a
 // float radiance target, read back as a linear image; or, for an AOV, the G-buffer pass's
 // material channel alone.
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -67,6 +68,9 @@ struct FrameStats {
 struct BakedLights {
   PackedTrees* trees = nullptr;  // taken by the renderer: left empty
   const LinklessOctree* octree = nullptr;
+  // Trees still being built (by prepareRenderer, on other threads) when `trees` is null: the
+  // renderer uploads the scene and sizes its targets first, then waits for them.
+  std::future<PackedTrees>* pendingTrees = nullptr;
 };
 
 // How what a method needs is baked when it is not given baked.
