@@ -16,6 +16,7 @@
 
 #include "bake/baked_sections.h"
 #include "base/output_file.h"
+#include "base/parallel.h"
 
 namespace manylight {
 namespace {
@@ -123,7 +124,7 @@ BakedScene bakeScene(Scene scene, const TreeOptions& trees, const OctreeOptions&
   // the trees is reported before one of the octree's, as if they were built in turn.
   std::future<LinklessOctree> built;
   if (b.hasOctree) {
-    built = std::async(std::launch::async, [&] {
+    built = std::async(kThreadOrDeferred, [&] {
       return packLinklessOctree(buildLightOctree(scene.lights, scene, octree));
     });
   }

@@ -283,14 +283,16 @@ void readTrees(Reader& r, BakedScene& b) {
     r.fail("slack out of range");
   p.words = r.array<std::uint32_t, Uninitialised<std::uint32_t>>();
   if (p.words.size() % 4 != 0) r.fail("tree words are not whole texels");
-  // The trees must be the layout's, for lights the file holds: each complete, in place, and
-  // every representative a light of its type.
+  // The trees must be the layout's, for lights the file holds: each complete, in place, every
+  // representative a light of its type, and no light in two leaves (the tile cutter maps each
+  // light to its one leaf, on several threads).
   int typeCount[3] = {0, 0, 0};
   for (const Light& l : b.scene.lights)
     ++typeCount[l.type == LightType::Directional ? 0 : l.type == LightType::Point ? 1 : 2];
   int start[3] = {0, 0, 0};
   for (int t = 1; t < 3; ++t) start[t] = start[t - 1] + typeCount[t - 1];
   std::uint64_t expected = 0;
+  std::vector<std::int64_t> leafOf(b.scene.lights.size(), -1);
   for (int t = 0; t < 3; ++t) {
     const std::int64_t leaves = p.leaves[t];
     if (leaves < 0 || (leaves & (leaves - 1)) != 0 || leaves < typeCount[t] ||
@@ -311,6 +313,13 @@ void readTrees(Reader& r, BakedScene& b) {
         r.fail("tree " + std::to_string(t) + ": node " + std::to_string(i) + " names light " +
                std::to_string(rep) + ", not one of its type");
       }
+      if (rep == -1 || i + 1 < std::uint64_t(leaves)) continue;  // internal nodes share reps
+      std::int64_t& leaf = leafOf[std::size_t(rep)];
+      if (leaf >= 0) {
+        r.fail("tree " + std::to_string(t) + ": leaves " + std::to_string(leaf) + " and " +
+               std::to_string(i) + " both hold light " + std::to_string(rep));
+      }
+      leaf = std::int64_t(i);
     }
     expected += nodes * stride;
   }

@@ -283,8 +283,8 @@ struct Builder {
     // The top levels split their halves on two threads (the halves touch disjoint ranges of
     // every array and disjoint leaves); below, one thread each.
     if (depth < 2 && hi - lo > 4096) {
-      auto half = std::async(std::launch::async,
-                             [&] { splitDown(left, capacity / 2, lo, mid, depth + 1); });
+      auto half =
+          std::async(kThreadOrDeferred, [&] { splitDown(left, capacity / 2, lo, mid, depth + 1); });
       splitDown(right, capacity / 2, mid, hi, depth + 1);
       half.get();
     } else {

@@ -8,7 +8,7 @@
 // Pairing: top-down, balanced. A node holding n lights gives ⌈n/2⌉ to its left child and
 // ⌊n/2⌋ to its right (so every subtree's leaves still fit a power of two), split at the
 // median of one axis. Split::Metric tries every axis (x, y, z; for spot lights, when
-// TreeOptions::coneWeight > 0, also the three axes of their directions scaled by c) and
+// TreeOptions::coneWeight > 0, also the three components of their directions) and
 // keeps the one whose two halves have the smallest sum of the paper's cluster metric
 // I_C·(α_C² + c²(1 − cos β_C)²); Split::LongestAxis takes the longest axis of the position
 // box, the classic k-d split, kept as the baseline the metric split is measured against.

@@ -6,11 +6,17 @@
 #include <algorithm>
 #include <cstddef>
 #include <exception>
+#include <future>
 #include <mutex>
 #include <thread>
 #include <vector>
 
 namespace manylight {
+
+// std::async's policy for work that should run on a thread of its own but may run deferred
+// (on the thread that waits for it) where no thread can be started, a process or memory
+// limit: libstdc++ then falls back to deferring instead of throwing std::system_error.
+inline constexpr std::launch kThreadOrDeferred = std::launch::async | std::launch::deferred;
 
 template <typename Work>
 void runOnThreads(int threads, const Work& work) {

@@ -6,6 +6,7 @@
 #include <future>
 #include <map>
 
+#include "base/parallel.h"
 #include "render/method_choice.h"
 
 namespace manylight {
@@ -34,7 +35,7 @@ std::unique_ptr<Renderer> prepareRenderer(const Scene& scene, const std::vector<
   } else if (method != Method::Reference && method != Method::Octree && !baked.trees) {
     // Built on other threads while the renderer uploads the scene (the trees' build leaves
     // cores idle at times; the upload is the GL thread's).
-    trees = std::async(std::launch::async,
+    trees = std::async(kThreadOrDeferred,
                        [&lights, &options] { return bakeLightTrees(lights, options.trees); });
     baked.pendingTrees = &trees;
     building = true;

@@ -158,6 +158,7 @@ void readChildren(od::value v, std::size_t i, NodeRecord& n, BulkArrays& out) {
     out.children.push_back(index(c, message));
   }
   n.childCount = std::uint32_t(out.children.size() - n.firstChild);
+  if (n.childCount == 0) n.firstChild = 0;  // as for a node without children: pieces agree
 }
 
 }  // namespace

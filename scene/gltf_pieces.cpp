@@ -138,12 +138,13 @@ void PieceReader::add(BulkArray array) {
       tasks_.push_back({&a, &p});
       waitingBytes_ += p.end - p.begin;
     }
-    if (pool_.empty() && waitingBytes_ >= kThreadBytes) startPool();
+    if (!poolTried_ && waitingBytes_ >= kThreadBytes) startPool();
   }
   queued_.notify_all();
 }
 
 void PieceReader::startPool() {
+  poolTried_ = true;
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const unsigned readers = std::clamp(cores, 2u, kMaxReaders);
   try {

@@ -89,6 +89,7 @@ class PieceReader {
   std::size_t waitingBytes_ = 0;  // text queued before the pool started
   bool closed_ = false;           // no more tasks will come
   bool stopped_ = false;          // take no more tasks
+  bool poolTried_ = false;        // startPool ran (it may have started no thread)
   std::vector<std::thread> pool_;
 };
 

@@ -301,6 +301,17 @@ TEST(Baked, DamagedAndForeignFilesAreRefused) {
   reseal(rep);
   cases.push_back({"representative", rep,
                    "light trees: tree 0: node 1 names light 99999, not one of its type"});
+  std::string twice = bytes;  // the first tree's second leaf holds its first leaf's light
+  std::int32_t leaves0;
+  std::memcpy(&leaves0, &bytes[trees + 12], 4);
+  const std::size_t firstLeaf = words + 4 * layout::kNodeWords * std::size_t(leaves0 - 1);
+  std::memcpy(&twice[firstLeaf + 4 * (layout::kNodeWords + 3)], &bytes[firstLeaf + 4 * 3], 4);
+  std::int32_t light;
+  std::memcpy(&light, &bytes[firstLeaf + 4 * 3], 4);
+  reseal(twice);
+  cases.push_back({"leaf-twice", twice,
+                   "light trees: tree 0: leaves " + std::to_string(leaves0 - 1) + " and " +
+                       std::to_string(leaves0) + " both hold light " + std::to_string(light)});
   std::string index = bytes;
   index[sectionOffset(bytes, "INST") + 4] = 100;  // instance 0's mesh
   reseal(index);

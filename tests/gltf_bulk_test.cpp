@@ -196,6 +196,19 @@ TEST(GltfBulk, AnArrayReadInPiecesGivesTheRecordsOfOneRead) {
   }
 }
 
+// Of two faults, the one earlier in the text is named, as a reader from the start would: a
+// faulty node before a later key that is not an array, or before broken JSON.
+TEST(GltfBulk, AFaultyElementIsNamedBeforeALaterFaultOfTheDocument) {
+  for (const std::string later : {R"("nodes": 5})", R"("scenes": [})"}) {
+    try {
+      split(R"({"nodes": [{}, {"mesh": "x"}], )" + later + "}");
+      ADD_FAILURE() << later;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(std::string(e.what()), "node 1: mesh is not an index") << later;
+    }
+  }
+}
+
 // Keys are read as written: a `scenes` key written with escapes, which tinygltf would read,
 // is refused in one line rather than shown without its roots.
 TEST(GltfBulk, AnEscapedScenesKeyIsRefused) {
