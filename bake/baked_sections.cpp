@@ -292,7 +292,7 @@ void readTrees(Reader& r, BakedScene& b) {
   int start[3] = {0, 0, 0};
   for (int t = 1; t < 3; ++t) start[t] = start[t - 1] + typeCount[t - 1];
   std::uint64_t expected = 0;
-  std::vector<std::int64_t> leafOf(b.scene.lights.size(), -1);
+  std::vector<std::int32_t> leafOf(b.scene.lights.size(), -1);  // leaves < 2^28
   for (int t = 0; t < 3; ++t) {
     const std::int64_t leaves = p.leaves[t];
     if (leaves < 0 || (leaves & (leaves - 1)) != 0 || leaves < typeCount[t] ||
@@ -314,12 +314,12 @@ void readTrees(Reader& r, BakedScene& b) {
                std::to_string(rep) + ", not one of its type");
       }
       if (rep == -1 || i + 1 < std::uint64_t(leaves)) continue;  // internal nodes share reps
-      std::int64_t& leaf = leafOf[std::size_t(rep)];
+      std::int32_t& leaf = leafOf[std::size_t(rep)];
       if (leaf >= 0) {
         r.fail("tree " + std::to_string(t) + ": leaves " + std::to_string(leaf) + " and " +
                std::to_string(i) + " both hold light " + std::to_string(rep));
       }
-      leaf = std::int64_t(i);
+      leaf = std::int32_t(i);
     }
     expected += nodes * stride;
   }

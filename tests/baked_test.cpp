@@ -250,6 +250,34 @@ TEST(Baked, ADamagedOctreeIsRefused) {
   expectRefused(octreeCases);
 }
 
+// Resealed damage to the light trees of `bytes`, a baked file of roomWithLights(40).
+std::vector<DamageCase> damagedTrees(const std::string& bytes) {
+  std::vector<DamageCase> cases;
+  std::string rep = bytes;
+  const std::size_t trees = sectionOffset(bytes, "TREE");
+  // base[3], leaves[3], coding, fit (5 doubles, a count), fittedToSrgb, scale, 8 doubles, word
+  // count.
+  const std::size_t words = trees + 24 + 1 + 48 + 1 + 4 + 64 + 8;
+  const std::int32_t farLight = 99999;
+  std::memcpy(&rep[words + 4 * (layout::kNodeWords + 3)], &farLight,
+              4);  // the first tree (directional), node 1
+  reseal(rep);
+  cases.push_back({"representative", rep,
+                   "light trees: tree 0: node 1 names light 99999, not one of its type"});
+  std::string twice = bytes;  // the first tree's second leaf holds its first leaf's light
+  std::int32_t leaves0;
+  std::memcpy(&leaves0, &bytes[trees + 12], 4);
+  const std::size_t firstLeaf = words + 4 * layout::kNodeWords * std::size_t(leaves0 - 1);
+  std::memcpy(&twice[firstLeaf + 4 * (layout::kNodeWords + 3)], &bytes[firstLeaf + 4 * 3], 4);
+  std::int32_t light;
+  std::memcpy(&light, &bytes[firstLeaf + 4 * 3], 4);
+  reseal(twice);
+  cases.push_back({"leaf-twice", twice,
+                   "light trees: tree 0: leaves " + std::to_string(leaves0 - 1) + " and " +
+                       std::to_string(leaves0) + " both hold light " + std::to_string(light)});
+  return cases;
+}
+
 TEST(Baked, DamagedAndForeignFilesAreRefused) {
   const std::string good = (testFolder() / "good.mlbake").string();
   writeBakedScene(good, bakeScene(roomWithLights(40), {}));
@@ -290,28 +318,7 @@ TEST(Baked, DamagedAndForeignFilesAreRefused) {
   lightType[sectionOffset(bytes, "LGHT") + 4] = 7;
   reseal(lightType);
   cases.push_back({"light-type", lightType, "lights: unknown light type 7"});
-  std::string rep = bytes;
-  const std::size_t trees = sectionOffset(bytes, "TREE");
-  // base[3], leaves[3], coding, fit (5 doubles, a count), fittedToSrgb, scale, 8 doubles, word
-  // count.
-  const std::size_t words = trees + 24 + 1 + 48 + 1 + 4 + 64 + 8;
-  const std::int32_t farLight = 99999;
-  std::memcpy(&rep[words + 4 * (layout::kNodeWords + 3)], &farLight,
-              4);  // the first tree (directional), node 1
-  reseal(rep);
-  cases.push_back({"representative", rep,
-                   "light trees: tree 0: node 1 names light 99999, not one of its type"});
-  std::string twice = bytes;  // the first tree's second leaf holds its first leaf's light
-  std::int32_t leaves0;
-  std::memcpy(&leaves0, &bytes[trees + 12], 4);
-  const std::size_t firstLeaf = words + 4 * layout::kNodeWords * std::size_t(leaves0 - 1);
-  std::memcpy(&twice[firstLeaf + 4 * (layout::kNodeWords + 3)], &bytes[firstLeaf + 4 * 3], 4);
-  std::int32_t light;
-  std::memcpy(&light, &bytes[firstLeaf + 4 * 3], 4);
-  reseal(twice);
-  cases.push_back({"leaf-twice", twice,
-                   "light trees: tree 0: leaves " + std::to_string(leaves0 - 1) + " and " +
-                       std::to_string(leaves0) + " both hold light " + std::to_string(light)});
+  for (DamageCase& c : damagedTrees(bytes)) cases.push_back(std::move(c));
   std::string index = bytes;
   index[sectionOffset(bytes, "INST") + 4] = 100;  // instance 0's mesh
   reseal(index);
