@@ -285,7 +285,7 @@ void readTrees(Reader& r, BakedScene& b) {
   if (p.words.size() % 4 != 0) r.fail("tree words are not whole texels");
   // The trees must be the layout's, for lights the file holds: each complete, in place, every
   // representative a light of its type, and no light in two leaves (the tile cutter maps each
-  // light to its one leaf, on several threads).
+  // light to its one leaf).
   int typeCount[3] = {0, 0, 0};
   for (const Light& l : b.scene.lights)
     ++typeCount[l.type == LightType::Directional ? 0 : l.type == LightType::Point ? 1 : 2];

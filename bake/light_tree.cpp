@@ -148,8 +148,8 @@ struct Builder {
   std::vector<glm::vec3> direction;  // per index, when oriented
   std::vector<Key> order[6];
   std::vector<Key> scratch;
-  std::vector<std::uint8_t> right;  // per index: in the right half of the split being made
-  std::vector<int> leafKey;         // per leaf: the index of its light; −1: none
+  std::vector<std::uint8_t> inRight;  // per index: in the right half of the split being made
+  std::vector<int> leafKey;           // per leaf: the index of its light; −1: none
 
   void sortOrders(int count) {
     axisCount = oriented ? 6 : 3;
@@ -166,7 +166,7 @@ struct Builder {
       for (std::size_t axis = from; axis < to; ++axis) sortAlong(int(axis), keys);
     });
     scratch.resize(std::size_t(count));
-    right.resize(std::size_t(count));
+    inRight.resize(std::size_t(count));
   }
 
   float coordinate(const Key& k, int axis) const {
@@ -249,7 +249,7 @@ struct Builder {
   // Splits [lo, hi) at mid along `axis`: every other order keeps its halves' keys in order.
   void splitAt(int lo, int mid, int hi, int axis) {
     // Local pointers: stores through the byte array could otherwise alias the vectors'.
-    std::uint8_t* const side = right.data();
+    std::uint8_t* const side = inRight.data();
     Key* const out = scratch.data();
     const Key* const cut = order[axis].data();
     for (int i = lo; i < mid; ++i) side[cut[i].index] = 0;

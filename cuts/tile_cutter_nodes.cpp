@@ -6,7 +6,6 @@
 #include <type_traits>
 
 #include "bake/light_tree_layout.h"
-#include "base/parallel.h"
 #include "cuts/node_lanes.h"
 #include "cuts/tile_cuts.h"
 
@@ -15,9 +14,6 @@ namespace manylight {
 using layout::floatOf;
 
 namespace {
-
-// Fewer lights or leaves than this a thread are set up on one.
-constexpr std::size_t kSlotsPerThread = 65536;
 
 // The words of node i of tree t.
 const std::uint32_t* wordsOf(const PackedTrees& packed, int t, int i) {
@@ -31,12 +27,8 @@ TileCutter::TileCutter(PackedTrees packed, const std::vector<Light>& lights)
     : packed_(std::move(packed)), colour_(packed_.colour) {
   const LightOrder order = lightOrder(lights);  // the light texture's slots
   spotStart_ = order.spotStart;
-  const std::size_t spots = lights.size() - std::size_t(order.spotStart);
-  cones_.resize(spots);
-  runOnShares(sharesOf(spots, kSlotsPerThread), spots, [&](int, std::size_t from, std::size_t to) {
-    for (std::size_t k = from; k < to; ++k)
-      cones_[k] = spotConeTerms(lights[std::size_t(order.scene[std::size_t(spotStart_) + k])]);
-  });
+  for (std::size_t slot = std::size_t(order.spotStart); slot < lights.size(); ++slot)
+    cones_.push_back(spotConeTerms(lights[std::size_t(order.scene[slot])]));
   // A node carries its representative's light, so that an estimate reads no second node:
   // the leaf of each slot, from the leaves' words.
   leafOfSlot_.assign(lights.size(), -1);
@@ -48,16 +40,10 @@ TileCutter::TileCutter(PackedTrees packed, const std::vector<Light>& lights)
     const std::size_t blocks = (count >> kBlockShift) + 1;
     state_[t].reset(new std::atomic<std::uint8_t>[blocks]);
     for (std::size_t b = 0; b < blocks; ++b) state_[t][b].store(kRaw, std::memory_order_relaxed);
-    // Each leaf writes its own slot's entry: shares of leaves run at once.
-    const std::size_t firstLeaf = std::size_t(std::max(leaves_[t] - 1, 0));
-    runOnShares(sharesOf(count - firstLeaf, kSlotsPerThread), count - firstLeaf,
-                [&](int, std::size_t from, std::size_t to) {
-                  for (std::size_t i = firstLeaf + from; i < firstLeaf + to; ++i) {
-                    const int slot = int(wordsOf(packed_, t, int(i))[3]);
-                    if (slot >= 0 && std::size_t(slot) < leafOfSlot_.size())
-                      leafOfSlot_[std::size_t(slot)] = int(i);
-                  }
-                });
+    for (int i = leaves_[t] - 1; i < 2 * leaves_[t] - 1; ++i) {
+      const int slot = int(wordsOf(packed_, t, i)[3]);
+      if (slot >= 0 && std::size_t(slot) < leafOfSlot_.size()) leafOfSlot_[std::size_t(slot)] = i;
+    }
   }
 }
 

@@ -27,8 +27,11 @@ std::unique_ptr<Renderer> prepareRenderer(const Scene& scene, const std::vector<
                                           double* bakeMs) {
   LinklessOctree octree;
   std::future<PackedTrees> trees;
-  bool building = false;
   const auto start = std::chrono::steady_clock::now();
+  const auto msSince = [&start] {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+  };
   if (method == Method::Octree && !baked.octree) {
     octree = packLinklessOctree(buildLightOctree(lights, scene, options.octree));
     baked.octree = &octree;
@@ -38,19 +41,14 @@ std::unique_ptr<Renderer> prepareRenderer(const Scene& scene, const std::vector<
     trees = std::async(kThreadOrDeferred,
                        [&lights, &options] { return bakeLightTrees(lights, options.trees); });
     baked.pendingTrees = &trees;
-    building = true;
   }
-  const double buildMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double buildMs = msSince();
   auto renderer = std::make_unique<Renderer>(scene, lights, width, height, method, baked);
   if (bakeMs) {
     // Trees built here: from the start of their build until the renderer holds them.
-    *bakeMs =
-        method == Method::Reference ? 0.0
-        : building
-            ? std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                  .count()
-            : buildMs + renderer->uploadMs();
+    *bakeMs = method == Method::Reference ? 0.0
+              : baked.pendingTrees        ? msSince()
+                                          : buildMs + renderer->uploadMs();
   }
   return renderer;
 }
