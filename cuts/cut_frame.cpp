@@ -61,6 +61,28 @@ bool surfaces(const GBufferPixels& px, const Group& group, const ShadingRegion& 
   return true;
 }
 
+// Whether pixel i's Phong lobe outweighs its Lambert term: a metal, say.
+bool lobeDominated(const GBufferPixels& px, std::size_t i) {
+  const float* ks = px.specular + 4 * i;
+  const float* a = px.albedo + 4 * i;
+  return std::max({ks[0], ks[1], ks[2]}) > std::max({a[0], a[1], a[2]});
+}
+
+// Splits `group` into its lobe-dominated pixels and the rest, which start from its seed.
+// False when all are of one kind. A pixel checks the shared cut with its own albedo and
+// specular colour, while the CPU weighs the cut's bounds by the group's means: a metal pixel
+// beside Lambert ones would meet lobe bounds far looser than its own estimate (all lobe)
+// allows, and walk its own cut. Seeds stay mixed: a quarter starts from a cut refined for
+// both kinds, and so does each kind's group.
+bool materials(const GBufferPixels& px, const Group& group, std::vector<Group>& todo) {
+  Group a{group.x0, group.y0, group.size, {}, group.seed}, b = a;
+  for (const int i : group.pixels) (lobeDominated(px, std::size_t(i)) ? a : b).pixels.push_back(i);
+  if (a.pixels.empty() || b.pixels.empty()) return false;
+  todo.push_back(std::move(a));
+  todo.push_back(std::move(b));
+  return true;
+}
+
 // The covered pixels of the square of `top` pixels at (x0, y0) that share cuts (and are
 // marked in `only`, when given).
 Group squareAt(const GBufferPixels& px, int x0, int y0, int top,
@@ -116,6 +138,7 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
     todo.pop_back();
     ShadingRegion g;
     const bool cone = shadingRegion(px, group.pixels, g);
+    if (group.size <= tileSize && g.lobes.on && materials(px, group, todo)) continue;
     // Normals over 90° apart leave no cosine bound: split without trying.
     const bool tried = cone && g.cosSpread >= 0.0f;
     if (group.size > tileSize) {  // a seed for the quarters

@@ -125,7 +125,8 @@ struct TileCutter::Cut {
   // node `n`, lane l of `bounds`. With cosᵣ⁺ and cosᵣ⁻ the largest and smallest cosines
   // between a mirror direction and a direction into the node (BoundLanes) and exponents in
   // [e⁻, e⁺], the lobe (e+2)/(2π)·max(l·m, 0)^e lies within [(e⁻+2)/(2π)·cosᵣ⁻^e⁺,
-  // (e⁺+2)/(2π)·cosᵣ⁺^e⁻] at every pixel, so the node per unit specular colour lies within
+  // (e⁺+2)/(2π)·cosᵣ⁺^e⁻] at every pixel (the powers bounded by BoundLanes' lobeBottom and
+  // lobeTop), so the node per unit specular colour lies within
   // I⁻·that lower·cos⁻·window⁻(d⁺)/d⁺² and I⁺·that upper·cos⁺·window(d⁻)/d⁻². The
   // representative's lobe at the centre, along the mirror axis with the mean exponent, lies
   // within them too: the estimate of a folded entry's lobe, off by at most their spread.
@@ -133,18 +134,8 @@ struct TileCutter::Cut {
   void addLobe(Item& it, const Node& n, int l, const Item* same) const {
     constexpr float kTwoPi = 2.0f * cut_region::kPi;
     const SpecularLobes& lobes = terms.g.lobes;
-    const float cosR = std::clamp(bounds.mirrorCos[l], 0.0f, 1.0f);
-    const float cosRLow = std::clamp(bounds.mirrorCosLow[l], 0.0f, 1.0f);
-    // No light of the node on the group (upperScale 0), or no lower bound (lowerScale 0):
-    // the powers are not needed.
-    const float top = bounds.upperScale[l] <= 0.0f ? 0.0f
-                      : cosR < 1.0f
-                          ? (lobes.maxExponent + 2.0f) / kTwoPi * std::pow(cosR, lobes.minExponent)
-                          : (lobes.maxExponent + 2.0f) / kTwoPi;
-    const float bottom =
-        cosRLow > 0.0f && bounds.lowerScale[l] > 0.0f
-            ? (lobes.minExponent + 2.0f) / kTwoPi * std::pow(cosRLow, lobes.maxExponent)
-            : 0.0f;
+    const float top = (lobes.maxExponent + 2.0f) / kTwoPi * bounds.lobeTop[l];
+    const float bottom = (lobes.minExponent + 2.0f) / kTwoPi * bounds.lobeBottom[l];
     const float slack = terms.slackRate * cut_region::maxOf(n.intensity) + terms.slackFloor;
     const glm::vec3 upper = (n.intensity + slack) * (bounds.upperScale[l] * top);
     const glm::vec3 lower =
@@ -154,12 +145,9 @@ struct TileCutter::Cut {
     if (same) {
       it.lobeUnit = same->lobeUnit;
     } else {
-      const glm::vec3 towards = it.tree == 0 ? n.repPoint : n.repPoint - terms.centre;
-      const float length = glm::length(towards);
-      const float c = length > 0.0f ? glm::dot(towards, lobes.axis) / length : 0.0f;
-      it.lobeUnit = c > 0.0f && it.unit > 0.0f
+      it.lobeUnit = it.unit > 0.0f
                         ? it.unit * cut_region::kPi * ((lobes.meanExponent + 2.0f) / kTwoPi) *
-                              std::pow(c, lobes.meanExponent)
+                              bounds.lobeTowards[l]
                         : 0.0f;
     }
     it.estimate = it.intensity * (lobes.albedo * it.unit + lobes.specular * it.lobeUnit);

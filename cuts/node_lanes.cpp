@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -21,6 +22,23 @@ MANYLIGHT_INLINE inline V vsqrt(V x) { return std::sqrt(x); }
 MANYLIGHT_INLINE inline V vabs(V x) { return std::abs(x); }
 MANYLIGHT_INLINE inline V vmin(V a, V b) { return std::min(a, b); }
 MANYLIGHT_INLINE inline V vmax(V a, V b) { return std::max(a, b); }
+MANYLIGHT_INLINE inline std::uint32_t bitsOf(V x) {
+  std::uint32_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+MANYLIGHT_INLINE inline V floatOfBits(std::uint32_t b) {
+  V x;
+  std::memcpy(&x, &b, sizeof x);
+  return x;
+}
+MANYLIGHT_INLINE inline V vexponent(V x) { return float(int((bitsOf(x) >> 23) & 0xffu) - 127); }
+MANYLIGHT_INLINE inline V vmantissa(V x) {
+  return floatOfBits((bitsOf(x) & 0x7fffffu) | 0x3f800000u);
+}
+MANYLIGHT_INLINE inline V vexp2Integer(V k) {
+  return floatOfBits(std::uint32_t(int(k) + 127) << 23);
+}
 #include "cuts/node_lanes_kernel.h"
 
 }  // namespace one_lane
@@ -40,6 +58,20 @@ MANYLIGHT_INLINE inline V vabs(V x) { return _mm256_andnot_ps(_mm256_set1_ps(-0.
 // std::min(a, b) = (b < a) ? b : a and std::max(a, b) = (a < b) ? b : a return a.
 MANYLIGHT_INLINE inline V vmin(V a, V b) { return _mm256_min_ps(b, a); }
 MANYLIGHT_INLINE inline V vmax(V a, V b) { return _mm256_max_ps(b, a); }
+MANYLIGHT_INLINE inline V vexponent(V x) {
+  const __m256i b = _mm256_srli_epi32(_mm256_castps_si256(x), 23);
+  return _mm256_cvtepi32_ps(
+      _mm256_sub_epi32(_mm256_and_si256(b, _mm256_set1_epi32(0xff)), _mm256_set1_epi32(127)));
+}
+MANYLIGHT_INLINE inline V vmantissa(V x) {
+  const __m256i b = _mm256_and_si256(_mm256_castps_si256(x), _mm256_set1_epi32(0x7fffff));
+  return _mm256_castsi256_ps(_mm256_or_si256(b, _mm256_set1_epi32(0x3f800000)));
+}
+// k is integral, so rounding it to an integer (CVTPS2DQ) is exact, as the one lane's int(k).
+MANYLIGHT_INLINE inline V vexp2Integer(V k) {
+  const __m256i e = _mm256_add_epi32(_mm256_cvtps_epi32(k), _mm256_set1_epi32(127));
+  return _mm256_castsi256_ps(_mm256_slli_epi32(e, 23));
+}
 #include "cuts/node_lanes_kernel.h"
 
 void nodeBounds(const RegionTerms& region, const NodeLanes& in, BoundLanes& out) {
@@ -48,6 +80,13 @@ void nodeBounds(const RegionTerms& region, const NodeLanes& in, BoundLanes& out)
 
 void foldBounds(const RegionTerms& region, const FoldLanes& in, float* t) {
   foldBoundLanes(region, in, 0, t);
+}
+
+void lobePowers(const float* x, float e, float* upper, float* lower, float* estimate) {
+  const V v = load(x);
+  store(upper, powUpperLanes(v, e));
+  store(lower, powLowerLanes(v, e));
+  store(estimate, powLanes(v, e));
 }
 
 void addFarField(glm::vec3 centre, const FarLanes& in, int count, FarSums& sums) {
@@ -116,6 +155,16 @@ void foldBounds(const RegionTerms& region, const FoldLanes& in, int count, float
                 bool wide) {
   MANYLIGHT_EIGHT_LANES(foldBounds(region, in, t));
   for (int l = 0; l < count; ++l) one_lane::foldBoundLanes(region, in, l, t);
+}
+
+void lobePowers(const float x[kLanes], float e, float upper[kLanes], float lower[kLanes],
+                float estimate[kLanes], bool wide) {
+  MANYLIGHT_EIGHT_LANES(lobePowers(x, e, upper, lower, estimate));
+  for (int l = 0; l < kLanes; ++l) {
+    upper[l] = one_lane::powUpperLanes(x[l], e);
+    lower[l] = one_lane::powLowerLanes(x[l], e);
+    estimate[l] = one_lane::powLanes(x[l], e);
+  }
 }
 
 void gatherNodes(const float* const nodes[kLanes], int count, NodeLanes& out, bool wide) {

@@ -55,14 +55,18 @@ struct RegionTerms {
 // measure (−1: a leaf; +inf: unbounded), error (upper, or upper − lower), estimate and
 // whether it is dark (TileCutter::cutRegion's Item).
 // Where the region has specular lobes, also (leaves too): cos⁺ · window(d⁻)/d⁻² (0 where no
-// light of the node reaches the region) and cos⁻ · window⁻(d⁺)/d⁺² (0 for spots), and the
-// largest and smallest cosines between a mirror direction of the region and a direction from
-// its box into the node's (cosᵣ⁺, cosᵣ⁻), from which cuts/cut_region.cpp bounds the node's
-// Phong lobe.
+// light of the node reaches the region) and cos⁻ · window⁻(d⁺)/d⁺² (0 for spots); with
+// cosᵣ⁺ and cosᵣ⁻ the largest and smallest cosines between a mirror direction of the region
+// and a direction from its box into the node's, clamped to [0, 1], an upper bound on
+// cosᵣ⁺^e⁻ (0 where the first term is) and a lower bound on cosᵣ⁻^e⁺ (0 where the second is),
+// e⁻ and e⁺ the lobes' smallest and largest exponents; and c^ē, c the cosine between the mirror
+// axis and the direction from the centre to the representative (0 where c ≤ 0), ē the mean
+// exponent. From these cuts/cut_region_cut.h bounds the node's Phong lobe and estimates it.
 struct BoundLanes {
   float unit[kLanes], measure[kLanes], dark[kLanes];
   float error[3][kLanes], estimate[3][kLanes];
-  float upperScale[kLanes], lowerScale[kLanes], mirrorCos[kLanes], mirrorCosLow[kLanes];
+  float upperScale[kLanes], lowerScale[kLanes];
+  float lobeTop[kLanes], lobeBottom[kLanes], lobeTowards[kLanes];
 };
 
 // Lanes [0, count) of `out` for the nodes in lanes [0, count) of `in` (count ≤ kLanes); all
@@ -71,6 +75,11 @@ struct BoundLanes {
 void nodeBounds(const RegionTerms& region, const NodeLanes& in, int count, BoundLanes& out,
                 bool wide = true);
 bool wideNodeBounds();  // whether `wide` takes eight lanes at once here
+
+// x^e for kLanes values x in [0, 1] and an exponent e ≥ 1, as BoundLanes' lobe terms take
+// it: an upper bound, a lower bound and an estimate (cuts/node_lanes_kernel.h's powLanes).
+void lobePowers(const float x[kLanes], float e, float upper[kLanes], float lower[kLanes],
+                float estimate[kLanes], bool wide = true);
 
 // Up to kLanes entries of a cut (their representatives' lights), one lane each, and their far
 // field linearisation bounds T (cuts/far_field.h) per unit albedo and intensity over the

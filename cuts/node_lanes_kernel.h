@@ -1,8 +1,10 @@
 // The node bounds of cuts/node_lanes.h over lanes of type V, included twice by
 // cuts/node_lanes.cpp: V = float, and V = __m256 under GCC's AVX2 target. It expects V,
 // splat(float) → V, load(const float*) → V, store(float*, V), and vsqrt, vabs, vmin, vmax
-// with std::min and std::max's semantics ((b < a) ? b : a and (a < b) ? b : a). The bounds
-// are those glsl/lighting_lightcuts.frag's nodeBounds puts on a node at one point, over a
+// with std::min and std::max's semantics ((b < a) ? b : a and (a < b) ? b : a), and on the
+// bits of floats: vexponent (a normal float's unbiased exponent, as a float), vmantissa (its
+// mantissa with exponent 0, in [1, 2)) and vexp2Integer (2^k for integral k in [−126, 127]). The
+// bounds are those glsl/lighting_lightcuts.frag's nodeBounds puts on a node at one point, over a
 // region of shading points instead (a box of positions, a cone of normals). Every branch is
 // taken by every lane and its results selected, so eight lanes and one give the same bits.
 // No include guard: included once per lane type.
@@ -120,6 +122,8 @@ MANYLIGHT_INLINE inline V unitLanes(const RegionTerms& r, const NodeLanes& in, i
   return load(in.knownUnit + l) != 0.0f ? load(in.unit + l) : fresh;
 }
 
+#include "cuts/lane_powers.h"
+
 // The largest cosine to the region's normals over the box of vectors `box` (dMin…dMax,
 // nearest length `dist`) and its bounding sphere: the largest cosine to the axis, widened by
 // the spread γ of the normals about it, cos(max(θ − γ, 0)).
@@ -167,6 +171,51 @@ MANYLIGHT_INLINE inline Mask spotReachesLanes(const RegionTerms& r, const NodeLa
   for (int c = 0; c < 3; ++c) axis[c] = load(in.axis[c] + l);
   return d <= reach || sinSum < 0.0f ||
          (axis[0] * toP[0] + axis[1] * toP[1] + axis[2] * toP[2]) / d >= cosSum;
+}
+
+// The vectors from the region to a node (nodeBoundLanes): their box, its bounding sphere
+// seen along the normals' axis, the nearest distance.
+struct NodeVectors {
+  const V* dMin;
+  const V* dMax;
+  const VectorBox& box;
+  const SphereAngles& sphere;
+  V dist;
+};
+
+// Where the region has specular lobes: BoundLanes' lobe terms for lanes [l, l + width of V),
+// given which of them the node lights (`lit`), the largest cosine and the distance terms.
+MANYLIGHT_INLINE inline void lobeLanes(const RegionTerms& r, const NodeLanes& in, int l,
+                                       const NodeVectors& v, Mask lit, V cosUp, V gUp, V gLow,
+                                       BoundLanes& out) {
+  const ShadingRegion& g = r.g;
+  const SpecularLobes& lobes = g.lobes;
+  const V zero = splat(0.0f);
+  const VectorBox& box = v.box;
+  const V upperScale = lit ? cosUp * gUp : zero;
+  store(out.upperScale + l, upperScale);
+  const V cosLow = widenDown(vmax(boxLower(g.axis, box), sphereLower(v.sphere)), g);
+  const V lowerScale = lit && gLow > 0.0f ? cosLow * gLow : zero;
+  store(out.lowerScale + l, lowerScale);
+  const SphereAngles mirrorSphere = sphereAngles(r.mirror.axis, box);
+  const V cosR = clampLanes(cosUpLanes(r.mirror, v.dMin, v.dMax, v.dist, mirrorSphere), 0.0f, 1.0f);
+  const V cosRLow =
+      clampLanes(widenDown(vmax(boxLower(r.mirror.axis, box), sphereLower(mirrorSphere)), r.mirror),
+                 0.0f, 1.0f);
+  store(out.lobeTop + l, upperScale > 0.0f ? powUpperLanes(cosR, lobes.minExponent) : zero);
+  store(out.lobeBottom + l, lowerScale > 0.0f ? powLowerLanes(cosRLow, lobes.maxExponent) : zero);
+  // The representative's direction from the centre against the mirror axis.
+  const auto directional = load(in.tree + l) == 0.0f;
+  V towards[3];
+  for (int c = 0; c < 3; ++c) {
+    const V rep = load(in.repPoint[c] + l);
+    towards[c] = directional ? rep : rep - r.centre[c];
+  }
+  const V length =
+      vsqrt(towards[0] * towards[0] + towards[1] * towards[1] + towards[2] * towards[2]);
+  const V along = lobes.axis.x * towards[0] + lobes.axis.y * towards[1] + lobes.axis.z * towards[2];
+  const V c = length > 0.0f ? along / length : zero;
+  store(out.lobeTowards + l, c > 0.0f ? powLanes(c, lobes.meanExponent) : zero);
 }
 
 // Lanes [l, l + width of V) of `out`.
@@ -220,15 +269,7 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
     for (int c = 0; c < 3; ++c)
       lower[c] = on ? vmax(intensity[c] - slack, zero) * lowerScale : zero;
   }
-  if (g.lobes.on) {
-    store(out.upperScale + l, lit ? cosUp * gUp : zero);
-    const V cosLow = widenDown(vmax(boxLower(g.axis, box), sphereLower(sphere)), g);
-    store(out.lowerScale + l, lit && gLow > 0.0f ? cosLow * gLow : zero);
-    const SphereAngles mirrorSphere = sphereAngles(r.mirror.axis, box);
-    store(out.mirrorCos + l, cosUpLanes(r.mirror, dMin, dMax, dist, mirrorSphere));
-    store(out.mirrorCosLow + l,
-          widenDown(vmax(boxLower(r.mirror.axis, box), sphereLower(mirrorSphere)), r.mirror));
-  }
+  if (g.lobes.on) lobeLanes(r, in, l, {dMin, dMax, box, sphere, dist}, lit, cosUp, gUp, gLow, out);
   store(out.dark + l, !unbounded && maxOfLanes(upper) <= 0.0f ? one : zero);
   V error[3];
   for (int c = 0; c < 3; ++c) error[c] = r.total ? upper[c] - lower[c] : upper[c];

@@ -221,11 +221,14 @@ struct CutWorkspace {
     float lobeUnit = 0.0f;
     glm::vec3 weighted{0.0f};
   };
-  // An entry that may fold into the far field, with its T per channel.
+  // An entry that may fold into the far field, with its T per channel, and the key entries
+  // fold in the order of (TileCutter::foldEntries): the largest channel of T under the total
+  // rule, of the lobe's spread under the node rule with lobes.
   struct Foldable {
     int item;
     glm::vec3 t;
-    bool operator<(const Foldable& o) const;  // smallest T first
+    float key;
+    bool operator<(const Foldable& o) const;  // smallest key first
   };
   std::vector<Item> items;
   std::vector<int> settled;  // items refined no further

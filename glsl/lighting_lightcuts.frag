@@ -418,7 +418,7 @@ bool tileCut() {
 #ifdef HAS_SPECULAR
   if (s.specular != vec3(0.0)) {
     sum = sum * (s.albedo / kPi) + lobes + specularEntries(uTileCuts, first, counts, s);
-    iterationsLeft -= count + 6;  // loop iterations run
+    iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;  // as run
   } else
 #endif
   {
