@@ -136,9 +136,9 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
   while (!todo.empty()) {
     Group group = std::move(todo.back());
     todo.pop_back();
+    if (group.size <= tileSize && px.albedo && materials(px, group, todo)) continue;
     ShadingRegion g;
     const bool cone = shadingRegion(px, group.pixels, g);
-    if (group.size <= tileSize && g.lobes.on && materials(px, group, todo)) continue;
     // Normals over 90° apart leave no cosine bound: split without trying.
     const bool tried = cone && g.cosSpread >= 0.0f;
     if (group.size > tileSize) {  // a seed for the quarters

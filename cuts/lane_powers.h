@@ -3,7 +3,7 @@
 // (vexponent, vmantissa, vexp2Integer among them). No include guard.
 
 // log₂ x for normal x > 0: x = 2^e · m with m in [√½, √2), and log₂ m = (2/ln 2) · atanh t
-// for t = (m − 1)/(m + 1), |t| ≤ 0.172, by its series to t⁷ (truncated below 4e-8).
+// for t = (m − 1)/(m + 1), |t| ≤ 0.172, by its series to t⁷ (truncated within 5e-8).
 MANYLIGHT_INLINE inline V log2Lanes(V x) {
   V e = vexponent(x), m = vmantissa(x);
   const auto high = m > 1.41421356f;
@@ -15,7 +15,7 @@ MANYLIGHT_INLINE inline V log2Lanes(V x) {
 
 // 2^y for y in [−126, 0]: 2^k · 2^f, k = y rounded to the nearest integer (adding and
 // subtracting 1.5 · 2²³ rounds it so), f = y − k in [−½, ½], 2^f by the series of e^(f·ln 2) to
-// its 7th power (truncated below 6e-9).
+// its 7th power (truncated within 1e-8, relative).
 MANYLIGHT_INLINE inline V exp2Lanes(V y) {
   const V k = (y + 12582912.0f) - 12582912.0f;
   const V f = (y - k) * 0.693147181f;

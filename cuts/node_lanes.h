@@ -47,7 +47,7 @@ struct RegionTerms {
   float slackRate, slackFloor;  // node colours' decoding slack (NodeColourCoder)
   bool total;                   // the total rule: lower bounds too
   // Where g.lobes.on: the cone of the group's mirror directions (g.lobes' axis and spread, as
-  // a region's normals), about which BoundLanes::mirrorCos is taken.
+  // a region's normals), about which BoundLanes::lobeTop and lobeBottom are taken.
   ShadingRegion mirror{};
 };
 

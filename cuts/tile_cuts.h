@@ -20,7 +20,9 @@
 // the node with the largest bound first, as the paper does, until the stopping rule holds
 // against the estimate at the centre with a margin (kMargin in the .cpp). A group whose cut
 // would exceed the maximum is split: into its surfaces where its normals spread wide (an
-// edge, a silhouette: cuts/pixel_groups.h), else into quarters, down to kFinestTile.
+// edge, a silhouette: cuts/pixel_groups.h), else into quarters, down to kFinestTile. A group
+// of tileSize or less holding metal-like pixels and others is split in two before its cut is
+// found (cut_frame.cpp's materials: each pixel checks the cut with its own colours).
 // Nodes that cannot reach any point of the group are left out. Each pixel then only sums
 // its group's cut (the same loop for every pixel of the group; the entries that light all
 // of it from in front folded into one linear far field, far_field.h, with their
@@ -34,7 +36,7 @@
 // The bounds hold at every pixel of the group, so the check is exactly the per-pixel rule
 // with bounds at least the pixel's own: the total rule's guarantee is kept. Specular pixels'
 // bounds are on their Phong lobes over the group's mirror directions and exponents
-// (SpecularLobes, cut_region.cpp's addLobe); the far field takes the folded entries' lobes
+// (SpecularLobes, cut_region_cut.h's addLobe); the far field takes the folded entries' lobes
 // as a constant, within their summed spread. A pixel whose check fails, and every pixel of
 // a group left to per-pixel cuts (a cut over the maximum even at the finest size), walks its
 // own cut, in a second pass over

@@ -418,7 +418,6 @@ bool tileCut() {
 #ifdef HAS_SPECULAR
   if (s.specular != vec3(0.0)) {
     sum = sum * (s.albedo / kPi) + lobes + specularEntries(uTileCuts, first, counts, s);
-    iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;  // as run
   } else
 #endif
   {
@@ -433,8 +432,9 @@ bool tileCut() {
                                   s.normal, unusedL);
     }
     sum *= s.albedo / kPi;
-    iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;
   }
+  // The loop iterations either sum ran: two directional or point entries an iteration.
+  iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;
   bool holds = ruleHolds(maxOf(bound), bound, sum);
   if (holds) {
     estimateSum = sum;

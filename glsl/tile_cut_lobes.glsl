@@ -5,7 +5,7 @@
 // irradiance times max(l·m, 0)^n, m the view's mirror direction (times the lobe's constant
 // at the end): l·m is R·V for R = reflect(−l, N). Two entries per iteration, as the Lambert
 // sum: a software rasteriser pays for each loop iteration.
-#define LOBE_SUM(ce, l) irradiance += ce; lobe += ce * pow(max(dot(l, m), 0.0), s.exponent);
+#define LOBE_SUM(ce, l) { vec3 c_ = ce; irradiance += c_; lobe += c_ * pow(max(dot(l, m), 0.0), s.exponent); }
 vec3 specularEntries(usamplerBuffer cuts, int first, ivec3 counts, Surface s) {
   vec3 m = reflect(-s.view, s.normal);
   vec3 irradiance = vec3(0.0), lobe = vec3(0.0);
@@ -41,3 +41,4 @@ vec3 specularEntries(usamplerBuffer cuts, int first, ivec3 counts, Surface s) {
   }
   return irradiance * (s.albedo / kPi) + lobe * (s.specular * ((s.exponent + 2.0) / (2.0 * kPi)));
 }
+#undef LOBE_SUM

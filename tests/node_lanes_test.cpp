@@ -67,6 +67,18 @@ RegionTerms randomRegion(std::mt19937& rng, bool total) {
   r.slackRate = 0.01f;
   r.slackFloor = 1e-6f;
   r.total = total;
+  if (rng() % 2 == 0) {  // specular lobes, about a cone of mirror directions
+    SpecularLobes& lobes = r.g.lobes;
+    lobes.on = true;
+    lobes.axis = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.01f, 0.0f, 0.0f));
+    lobes.cosSpread = rng() % 5 == 0 ? -1.0f : 0.9f + 0.1f * std::abs(u(rng));
+    lobes.sinSpread = std::sqrt(std::max(1.0f - lobes.cosSpread * lobes.cosSpread, 0.0f));
+    lobes.minExponent = 1.0f + 10.0f * std::abs(u(rng));
+    lobes.maxExponent = lobes.minExponent * (1.0f + 100.0f * std::abs(u(rng)));
+    lobes.meanExponent = 0.5f * (lobes.minExponent + lobes.maxExponent);
+    r.mirror = ShadingRegion{r.g.pMin,        r.g.pMax,        lobes.axis,
+                             lobes.cosSpread, lobes.sinSpread, SpecularLobes{}};
+  }
   return r;
 }
 
@@ -81,7 +93,7 @@ RegionTerms randomRegion(std::mt19937& rng, bool total) {
 TEST(NodeLanes, EightLanesGiveOneLanesResultsBitForBit) {
   SKIP_WITHOUT_EIGHT_LANES();
   std::mt19937 rng(7);
-  int unbounded = 0, dark = 0, leaves = 0, bounded = 0;
+  int unbounded = 0, dark = 0, leaves = 0, bounded = 0, lobeTops = 0, lobeBottoms = 0;
   for (int round = 0; round < 4000; ++round) {
     const NodeLanes in = randomNodes(rng);
     const RegionTerms region = randomRegion(rng, round % 2 == 1);
@@ -111,6 +123,10 @@ TEST(NodeLanes, EightLanesGiveOneLanesResultsBitForBit) {
       if (in.knownUnit[l] != 0.0f) {
         EXPECT_EQ(one.unit[l], in.unit[l]);
       }
+      if (region.g.lobes.on) {
+        lobeTops += one.lobeTop[l] > 0.0f && one.lobeTop[l] < 1.0f ? 1 : 0;
+        lobeBottoms += one.lobeBottom[l] > 0.0f && one.lobeBottom[l] < 1.0f ? 1 : 0;
+      }
     }
   }
   // Every branch was taken.
@@ -118,6 +134,8 @@ TEST(NodeLanes, EightLanesGiveOneLanesResultsBitForBit) {
   EXPECT_GT(dark, 100);
   EXPECT_GT(leaves, 100);
   EXPECT_GT(bounded, 100);
+  EXPECT_GT(lobeTops, 100);    // the lobes' powers, in [0, 1] (cuts/lane_powers.h)
+  EXPECT_GT(lobeBottoms, 20);  // rarer: every cosine of the node must be positive
 }
 
 // Nodes gathered into lanes by a transpose and one float at a time; lanes past the count

@@ -4,6 +4,7 @@
 // its group, is within the bounds the pixel checks against (albedo ∘ U + ks ∘ U_lobe).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 
@@ -65,7 +66,8 @@ struct MaterialGBuffer {
 
 struct Checked {
   int specularPixels = 0, sharedSpecular = 0, sharedPixels = 0, failing = 0;
-  int lobeCuts = 0;  // shared pixels whose cut carries lobe bounds
+  int lobeCuts = 0;   // shared pixels whose cut carries lobe bounds
+  int mixedCuts = 0;  // shared cuts holding metal-like pixels (ks over albedo) and others
   double worstOverBound = 0.0;
 };
 
@@ -82,6 +84,7 @@ Checked checkCuts(const MaterialGBuffer& g, const std::vector<Light>& lights,
       spotAt[{lights[i].position.x, lights[i].position.y, lights[i].position.z}] = i;
   }
   Checked c;
+  std::map<std::uint32_t, int> kinds;  // per shared cut: 1 metal-like pixels, 2 others
   for (std::size_t i = 0; i < std::size_t(kSize * kSize); ++i) {
     if (g.normal[4 * i + 3] == 0.0f) continue;
     const shading::PhongMaterial m{g.at(g.albedo, i), g.at(g.specular, i),
@@ -92,6 +95,8 @@ Checked checkCuts(const MaterialGBuffer& g, const std::vector<Light>& lights,
     if (cut == kNoSharedCut) continue;
     ++c.sharedPixels;
     c.sharedSpecular += specular ? 1 : 0;
+    const double ks = std::max({m.specular.r, m.specular.g, m.specular.b});
+    kinds[cut] |= ks > std::max({m.albedo.r, m.albedo.g, m.albedo.b}) ? 1 : 2;
     const glm::dvec3 p = g.at(g.position, i), n = g.at(g.normal, i);
     const glm::dvec3 v = glm::normalize(glm::dvec3(kEye) - p);
     auto radiance = [&](const Light& l) {
@@ -139,6 +144,7 @@ Checked checkCuts(const MaterialGBuffer& g, const std::vector<Light>& lights,
       if (bound[ch] > 0.0) c.worstOverBound = std::max(c.worstOverBound, error / bound[ch]);
     }
   }
+  for (const auto& k : kinds) c.mixedCuts += k.second == 3 ? 1 : 0;
   return c;
 }
 
@@ -170,6 +176,36 @@ TEST(SpecularCuts, SpecularPixelsTakeTheirGroupsCutUnderTheNodeRule) {
   const Checked c = cutAndCheck(LightLayout::Mixed, 1500, CutRule{0.02f, false, 2000}, 16);
   EXPECT_EQ(c.specularPixels, 3072);
   EXPECT_GT(c.sharedSpecular, c.specularPixels * 9 / 10);
+}
+
+// On one plane, metal stripes among Lambert ones: no shared cut holds both kinds (each pixel
+// checks the cut with its own colours, cuts/cut_frame.cpp's materials), and the metal pixels
+// take shared cuts within their bounds.
+TEST(SpecularCuts, MetalPixelsAndOthersTakeCutsApart) {
+  MaterialGBuffer g;
+  int metal = 0;
+  for (int y = 0; y < kSize - 6; ++y) {
+    for (int x = 4; x < kSize * 5 / 8; x += 8) {
+      for (int k = x; k < x + 4; ++k) {
+        const std::size_t i = (std::size_t(y) * kSize + k) * 4;
+        const float ks[3] = {0.8f, 0.25f, 0.2f};
+        for (int c = 0; c < 3; ++c) g.albedo[i + c] = 0.0f, g.specular[i + c] = ks[c];
+        g.position[i + 3] = 1.5f;
+        ++metal;
+      }
+    }
+  }
+  const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 1500, 7);
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  for (const bool total : {false, true}) {
+    SCOPED_TRACE(total ? "total rule" : "node rule");
+    const Checked c =
+        checkCuts(g, lights, cutter.cut(g.pixels(), 16, CutRule{0.02f, total, 8000}, 2));
+    EXPECT_EQ(c.mixedCuts, 0);
+    EXPECT_EQ(c.specularPixels, 3072 - 42 * 20 + metal);  // the stripes were Lambert above
+    EXPECT_GT(c.sharedSpecular, c.specularPixels * 9 / 10);
+    if (total) EXPECT_EQ(c.failing, 0);
+  }
 }
 
 // Without the albedo (and so the view), specular pixels cut for themselves.
