@@ -20,12 +20,12 @@ namespace {
 constexpr float kFoldMargin = 0.75f;
 // Under the node rule, the folded entries' lobe spreads sum to at most this share of the
 // target (cuts/tile_cuts.h: the far field's lobes are a constant over the group). A pixel
-// checks the cut's largest Lambert bound plus its largest lobe bound (this sum, where that
-// is larger) against its own estimate, while the CPU stopped at kMargin of the centre's
-// measure of single nodes, the two parts together: at half the target,
-// the pixels around a light's highlight on a glossy surface, whose estimates fall off from
-// the centre's, failed their check and walked their own cuts (750 pixels of the generated
-// specular room at 640 × 480, 65,536 lights; 210 at an eighth, for 1% more entries).
+// checks the cut's largest Lambert bound plus its largest lobe bound (or this sum, where
+// larger) against its own estimate, while the CPU stopped where each node's two parts
+// together met kMargin of the centre's estimate. At half the target, the pixels around a
+// light's highlight on a glossy surface, whose estimates fall off from the centre's, failed
+// their check and walked their own cuts (750 pixels of the generated specular room at
+// 640 × 480, 65,536 lights; 210 at an eighth, for 1% more entries).
 constexpr float kLobeFold = 0.125f;
 // An entry folded into the far field (beside foldBounds' kZeroEntry and kFullCone).
 constexpr float kFolded = 1.0f;

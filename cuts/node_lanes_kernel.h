@@ -173,28 +173,25 @@ MANYLIGHT_INLINE inline Mask spotReachesLanes(const RegionTerms& r, const NodeLa
          (axis[0] * toP[0] + axis[1] * toP[1] + axis[2] * toP[2]) / d >= cosSum;
 }
 
-// The vectors from the region to a node (nodeBoundLanes): their box, its bounding sphere
-// seen along the normals' axis, the nearest distance.
+// The vectors from the region to a node (nodeBoundLanes): their box and nearest distance.
 struct NodeVectors {
   const V* dMin;
   const V* dMax;
   const VectorBox& box;
-  const SphereAngles& sphere;
   V dist;
 };
 
 // Where the region has specular lobes: BoundLanes' lobe terms for lanes [l, l + width of V),
-// given which of them the node lights (`lit`), the largest cosine and the distance terms.
+// given which of them the node lights (`lit`), the largest and smallest cosines to the
+// normals and the distance terms.
 MANYLIGHT_INLINE inline void lobeLanes(const RegionTerms& r, const NodeLanes& in, int l,
-                                       const NodeVectors& v, Mask lit, V cosUp, V gUp, V gLow,
-                                       BoundLanes& out) {
-  const ShadingRegion& g = r.g;
-  const SpecularLobes& lobes = g.lobes;
+                                       const NodeVectors& v, Mask lit, V cosUp, V cosLow, V gUp,
+                                       V gLow, BoundLanes& out) {
+  const SpecularLobes& lobes = r.g.lobes;
   const V zero = splat(0.0f);
   const VectorBox& box = v.box;
   const V upperScale = lit ? cosUp * gUp : zero;
   store(out.upperScale + l, upperScale);
-  const V cosLow = widenDown(vmax(boxLower(g.axis, box), sphereLower(v.sphere)), g);
   const V lowerScale = lit && gLow > 0.0f ? cosLow * gLow : zero;
   store(out.lowerScale + l, lowerScale);
   const SphereAngles mirrorSphere = sphereAngles(r.mirror.axis, box);
@@ -261,15 +258,17 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   V upper[3], lower[3] = {zero, zero, zero};
   for (int c = 0; c < 3; ++c) upper[c] = lit ? (intensity[c] + slack) * upperScale : zero;
   const auto unbounded = touching || (lit && !(vabs(maxOfLanes(upper)) <= 3.40282347e+38f));
+  // The smallest cosine over the box (or its sphere), narrowed by the normals' spread: the
+  // total rule's lower bounds and the lobes' need it.
+  const V cosLow =
+      r.total || g.lobes.on ? widenDown(vmax(boxLower(g.axis, box), sphereLower(sphere)), g) : zero;
   if (r.total) {
-    // The smallest cosine over the box (or its sphere), narrowed by the normals' spread.
-    const V cosLow = widenDown(vmax(boxLower(g.axis, box), sphereLower(sphere)), g);
     const V lowerScale = cosLow * gLow / kPi;
     const auto on = lit && gLow > 0.0f;
     for (int c = 0; c < 3; ++c)
       lower[c] = on ? vmax(intensity[c] - slack, zero) * lowerScale : zero;
   }
-  if (g.lobes.on) lobeLanes(r, in, l, {dMin, dMax, box, sphere, dist}, lit, cosUp, gUp, gLow, out);
+  if (g.lobes.on) lobeLanes(r, in, l, {dMin, dMax, box, dist}, lit, cosUp, cosLow, gUp, gLow, out);
   store(out.dark + l, !unbounded && maxOfLanes(upper) <= 0.0f ? one : zero);
   V error[3];
   for (int c = 0; c < 3; ++c) error[c] = r.total ? upper[c] - lower[c] : upper[c];

@@ -27,6 +27,7 @@ TileCutter::TileCutter(PackedTrees packed, const std::vector<Light>& lights)
     : packed_(std::move(packed)), colour_(packed_.colour) {
   const LightOrder order = lightOrder(lights);  // the light texture's slots
   spotStart_ = order.spotStart;
+  cones_.reserve(lights.size() - std::size_t(order.spotStart));
   for (std::size_t slot = std::size_t(order.spotStart); slot < lights.size(); ++slot)
     cones_.push_back(spotConeTerms(lights[std::size_t(order.scene[slot])]));
   // A node carries its representative's light, so that an estimate reads no second node:
