@@ -279,7 +279,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
                    "and the errors cover those rows")
       ->capture_default_str()
       ->check(CLI::Range(0.001, 1e6));
-  bench->add_option("--max-cut", a.maxCut, "lightcuts: most nodes in a pixel's cut")
+  bench->add_option("--max-cut", a.maxCut, maxCutHelp())
       ->capture_default_str()
       ->check(CLI::Range(1, kMaxCutLimit));
   bench->add_flag("--resume", a.resume,

@@ -64,6 +64,8 @@ nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectSta
 // One line naming the lights an octree holds at every pixel because their support holds
 // the whole scene, or "" when there are none.
 std::string wholeSceneNote(const std::string& scene, const OctreeSummary& o);
+// --max-cut's help, for render, play and bench.
+std::string maxCutHelp();
 // A context, or null after saying why there is none.
 std::unique_ptr<gl::Context> openContext(gl::Backend backend, bool verbose);
 

@@ -144,6 +144,12 @@ std::unique_ptr<gl::Context> openContext(gl::Backend backend, bool verbose) {
   return context;
 }
 
+std::string maxCutHelp() {
+  return "lightcuts: most nodes of a cut a pixel walks itself (the cuts shared by groups of "
+         "pixels, --cut-tile, hold up to " +
+         std::to_string(kSharedCutLimit) + " entries)";
+}
+
 void addMethodOptions(CLI::App* app, MethodArgs& a) {
   a.methodOption =
       app->add_option(
@@ -163,7 +169,7 @@ void addMethodOptions(CLI::App* app, MethodArgs& a) {
                   "(guaranteed: the sum of the cut's error bounds ≤ ε·estimate)")
       ->capture_default_str()
       ->check(CLI::IsMember({"node", "total"}));
-  app->add_option("--max-cut", a.maxCut, "lightcuts: most nodes in a pixel's cut")
+  app->add_option("--max-cut", a.maxCut, maxCutHelp())
       ->capture_default_str()
       ->check(CLI::Range(1, kMaxCutLimit));
   app->add_option("--cut-tile", a.cutTile,

@@ -70,11 +70,21 @@
 
 namespace manylight {
 
+// The most entries a shared cut holds, whatever the most nodes a pixel walks itself
+// (LightcutsSettings::maxCut, `--max-cut`). A pixel sums its group's entries in one loop of
+// one iteration per spot entry and per two others, within the shader's budget of 65,000
+// iterations (glsl/lighting_lightcuts.frag), and the far field counts its entries in 15 bits
+// (below). Held to the walk's default of 2,000, groups at ε = 0.005 split until a 640×480
+// frame of 65,536 mixed lights took 5,337 cuts, whose finding took 1.4 s of its 1.6 s; at
+// 8,000 it takes 1,093 cuts and 0.7–0.9 s (docs/performance.md).
+inline constexpr int kSharedCutLimit = 8000;
+static_assert(kSharedCutLimit < (1 << 15), "the far field counts its entries in 15 bits");
+
 // What the rule asks of a cut (see LightcutsSettings).
 struct CutRule {
-  float error = 0.02f;  // ε
-  bool total = false;   // the total rule; else the node rule
-  int maxCut = 2000;
+  float error = 0.02f;           // ε
+  bool total = false;            // the total rule; else the node rule
+  int maxCut = kSharedCutLimit;  // the most entries of a shared cut
 };
 
 // The frame's shared cuts. Each pixel names its cut (cutOfPixel, one word per pixel, rows
@@ -187,8 +197,8 @@ inline constexpr int kFinestTile = 4;
 // everywhere. Measured on 65,536 mixed lights at 640×480 (docs/performance.md): a fixed
 // 1,000 made ε = 0.01 cost 6× ε = 0.02; splitting only at the maximum made ε = 0.02 cost 10%
 // (Lambert) to 25% (specular) more, its pixels summing more entries. Groups of the finest
-// size take cuts up to the maximum, since their pixels would otherwise walk cuts of their
-// own, each about as costly as a 4×4 group's shared cut.
+// size take cuts up to the maximum (CutRule::maxCut), since their pixels would otherwise walk
+// cuts of their own, each about as costly as a 4×4 group's shared cut.
 inline constexpr int kSplitCut = 1000;
 inline constexpr float kSplitError = 0.02f;
 inline int splitCut(const CutRule& rule) {

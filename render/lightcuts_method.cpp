@@ -160,8 +160,9 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const View& view, bool sp
     pixels.forward = view.forward;
     pixels.orthographic = view.orthographic;
   }
-  const CutRule rule{settings.error, settings.mode == ErrorMode::Total,
-                     std::clamp(settings.maxCut, 1, kMaxCutLimit)};
+  // Shared cuts are not held to settings.maxCut, the most nodes a pixel walks itself
+  // (kSharedCutLimit says why).
+  const CutRule rule{settings.error, settings.mode == ErrorMode::Total, kSharedCutLimit};
   const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
   if (settings.keepCuts) {
     if (!cells_) cells_ = std::make_unique<CellCuts>(*tileCutter_);

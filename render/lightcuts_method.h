@@ -22,7 +22,7 @@ enum class ErrorMode { Node, Total };
 struct LightcutsSettings {
   float error = 0.02f;  // ε
   ErrorMode mode = ErrorMode::Node;
-  int maxCut = 2000;  // nodes per cut; at most kMaxCutLimit
+  int maxCut = 2000;  // nodes of a cut a pixel walks itself; at most kMaxCutLimit
   // Pixels share the cut of their tile of tileSize × tileSize pixels where it holds for
   // them (cuts/tile_cuts.h); 1: every pixel finds its own cut. Not for the distance
   // criterion.

@@ -204,7 +204,9 @@ TEST(SpecularCuts, MetalPixelsAndOthersTakeCutsApart) {
     EXPECT_EQ(c.mixedCuts, 0);
     EXPECT_EQ(c.specularPixels, 3072 - 42 * 20 + metal);  // the stripes were Lambert above
     EXPECT_GT(c.sharedSpecular, c.specularPixels * 9 / 10);
-    if (total) EXPECT_EQ(c.failing, 0);
+    if (total) {
+      EXPECT_EQ(c.failing, 0);
+    }
   }
 }
 
