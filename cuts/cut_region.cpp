@@ -7,6 +7,7 @@
 
 namespace manylight {
 
+using cut_region::kFoldMargin;
 using cut_region::kHopeless;
 using cut_region::kMargin;
 using cut_region::kPi;
@@ -15,9 +16,6 @@ using cut_region::weigh;
 
 namespace {
 
-// Under the total rule, entries fold into the far field while the summed bound stays within
-// this share of the rule's target (the cut itself stopped at kMargin).
-constexpr float kFoldMargin = 0.75f;
 // Under the node rule, the folded entries' lobe spreads sum to at most this share of the
 // target (cuts/tile_cuts.h: the far field's lobes are a constant over the group). A pixel
 // checks the cut's largest Lambert bound plus its largest lobe bound (or this sum, where
@@ -102,7 +100,7 @@ bool TileCutter::refine(Cut& cut) const {
   const CutRule& rule = cut.rule;
   while (!heap.empty()) {
     const float top = cut.topOfHeap();
-    if (cut.holds(kMargin, top, cut.errorSum)) break;
+    if (cut.holds(cut.margin(), top, cut.errorSum)) break;
     const int size = int(heap.size() + cut.work.settled.size()) + cut.far.count();
     if (cut.full(size, top)) {
       // At the finest size, a full cut that meets the rule at the centre without the margin
@@ -112,7 +110,7 @@ bool TileCutter::refine(Cut& cut) const {
       // Larger groups split instead: the quarters' cuts are smaller, and so cheaper per pixel.
       if (cut.finest && cut.holds(1.0f, top, cut.errorSum)) break;
       cut.result.perPixel = true;  // the tile's cut is full: its pixels cut for themselves
-      const float want = cut.target(kMargin, cut.errorSum);
+      const float want = cut.target(cut.margin(), cut.errorSum);
       const float have = rule.total ? maxOf(cut.errorSum) : top;
       cut.result.shortfall = want > 0.0f ? have / want : std::numeric_limits<float>::infinity();
       if (!cut.wantSeed) return false;
@@ -131,7 +129,7 @@ bool TileCutter::refine(Cut& cut) const {
       heap.pop_back();
       if (std::isfinite(parent.measure)) errorLeft -= parent.weighted;
     } while (count < kLanes / 2 && !heap.empty() &&
-             !cut.holds(kMargin, cut.topOfHeap(), errorLeft) &&
+             !cut.holds(cut.margin(), cut.topOfHeap(), errorLeft) &&
              !cut.full(size + count, cut.topOfHeap()));
     cut.errorSum = errorLeft;
     for (int p = 0; p < count; ++p) {

@@ -18,8 +18,16 @@ namespace cut_region {
 inline constexpr float kPi = 3.14159265358979323846f;
 // The CPU stops refining once the rule holds against its estimate at the tile's centre
 // times this margin, so that most pixels, whose estimates differ from the centre's, pass
-// their own check.
+// their own check: kMargin under the node rule, kTotalMargin under the total rule, whose
+// far field then takes entries while the summed bound stays within kFoldMargin
+// (cut_region.cpp). A pixel darker than the centre by more than the margin fails its check
+// and walks its own cut. At 1/2 and 3/4 (the fold's), 680–1,311 of 58,600 pixels of the
+// generated room with 4,096 uniform, mixed or specular mixed lights (320×240, ε = 0.02)
+// failed and reached --max-cut in their walks; at 1/4 and 0.3 none do, for 10–25% more light
+// evaluations a pixel (clustered lights: 0 either way, 8% slower).
 inline constexpr float kMargin = 0.5f;
+inline constexpr float kTotalMargin = 0.25f;
+inline constexpr float kFoldMargin = 0.3f;
 // Under the node rule, a cut past half the maximum whose largest bound is still this many
 // times the target is given up as full: refining the rest would fill it anyway.
 inline constexpr float kHopeless = 4.0f;
@@ -160,6 +168,8 @@ struct TileCutter::Cut {
     waiting[waitingCount++] = {tree, index, parent};
     if (waitingCount == kLanes) flush();
   }
+  // The margin the cut stops at (kMargin, kTotalMargin).
+  float margin() const { return rule.total ? cut_region::kTotalMargin : cut_region::kMargin; }
   // The rule's target at the centre times `margin`, with `errors` the cut's summed errors.
   float target(float margin, glm::vec3 errors) const {
     return margin * rule.error * cut_region::maxOf(rule.total ? sum - errors : sum);
