@@ -2,6 +2,7 @@
 // records against the total rule's guarantee, `manylight bench` and bench/report.py.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "generators/light_layouts.h"
@@ -82,6 +83,34 @@ TEST(Bench, SweepRecordsHoldTheTotalRuleAndTheReferenceIsExact) {
   EXPECT_GT(records[1].averageCut, 1.0);
   EXPECT_NEAR(records[1].ratioToReference, records[1].renderMs / records[0].renderMs, 1e-9);
   EXPECT_EQ(records[2].variant.label(), "lightcuts-distance");
+}
+
+TEST(Bench, ACaseWithItsOwnErrorRunsEachRuleOnceAtIt) {
+  context();
+  SweepSettings s;
+  s.width = 48;
+  s.height = 36;
+  s.repeats = 1;
+  s.variants = expandVariants({Method::Reference, Method::Lightcuts},
+                              {ErrorMode::Node, ErrorMode::Total}, {0.02f, 0.05f});
+  const std::vector<SweepCase> suite = stabilityCases();
+  const auto fine = std::find_if(suite.begin(), suite.end(), [](const SweepCase& c) {
+    return c.name == "clustered-fine-16384";
+  });
+  ASSERT_NE(fine, suite.end());
+  EXPECT_EQ(fine->layout, LightLayout::Clustered);
+  EXPECT_EQ(fine->error, 0.005f);
+  SweepCase c = *fine;
+  c.lights = 400;  // the case's ε on fewer lights, at a size a test affords
+  const auto records = Sweep(room(), s).run(c, [](auto&) {});
+  ASSERT_EQ(records.size(), 3u);
+  EXPECT_EQ(records[0].variant.label(), "reference");
+  EXPECT_EQ(records[1].variant.label(), "lightcuts-node-0.005");
+  EXPECT_EQ(records[2].variant.label(), "lightcuts-total-0.005");
+  for (const RunRecord& r : records) EXPECT_EQ(r.failure, "") << r.variant.label();
+  EXPECT_EQ(records[2].pixelsAtMaxCut, 0);
+  // The total rule's guarantee at the case's ε, with the float slack of lightcuts_gltest.cpp.
+  EXPECT_LE(records[2].errors.maxRelative, 0.005 + 1e-4);
 }
 
 TEST(Bench, SweepSlowReferencesLightARowSubsetAndSaySo) {

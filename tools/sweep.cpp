@@ -104,6 +104,12 @@ std::vector<SweepCase> stabilityCases() {
       layoutCase(L::SpotsAway, 16384),
       layoutCase(L::OnSurfaces, 16384),
   };
+  // Below ε = 0.02 dense clusters once needed shared cuts larger than --max-cut: every pixel
+  // walked its own.
+  SweepCase fine = layoutCase(L::Clustered, 16384);
+  fine.name = "clustered-fine-16384";
+  fine.error = 0.005f;
+  cases.push_back(fine);
   SweepCase capped = layoutCase(L::Uniform, 16384);
   capped.name = "max-cut-16";
   capped.maxCut = 16;
@@ -114,6 +120,19 @@ std::vector<SweepCase> stabilityCases() {
     cases.push_back(c);
   }
   return cases;
+}
+
+std::vector<SweepVariant> caseVariants(const std::vector<SweepVariant>& variants,
+                                       const SweepCase& c) {
+  if (c.error <= 0.0f) return variants;
+  std::vector<SweepVariant> out;
+  for (SweepVariant v : variants) {
+    if (v.method == Method::Lightcuts) v.error = c.error;
+    const bool seen = std::any_of(out.begin(), out.end(),
+                                  [&](const SweepVariant& o) { return o.label() == v.label(); });
+    if (!seen) out.push_back(v);
+  }
+  return out;
 }
 
 Sweep::Sweep(const Scene& scene, const SweepSettings& settings)
@@ -208,7 +227,7 @@ std::vector<RunRecord> Sweep::run(const SweepCase& c,
   std::vector<RunRecord> out;
   std::map<Method, std::unique_ptr<Renderer>> renderers;
   std::map<Method, double> bakeMs;  // per renderer: its trees baked and uploaded
-  for (const SweepVariant& v : settings_.variants) {
+  for (const SweepVariant& v : caseVariants(settings_.variants, c)) {
     if (v.method == Method::Reference) {
       out.push_back(ref);
       continue;
@@ -298,7 +317,7 @@ std::vector<Sweep::Temporal> Sweep::temporal(const SweepCase& c, int frames,
   std::vector<double> sums;
   std::vector<long long> counts;
   Renderer reference(scene_, lights, w, h, Method::Reference);
-  for (const SweepVariant& v : settings_.variants) {
+  for (const SweepVariant& v : caseVariants(settings_.variants, c)) {
     if (v.method == Method::Reference || !measured(v, lights)) continue;
     Temporal t;
     t.caseName = c.name;

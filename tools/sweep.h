@@ -31,7 +31,8 @@ struct SweepCase {
   std::string name;  // unique in a run: "uniform-1024", or a stability case's name
   LightLayout layout = LightLayout::Uniform;
   int lights = 0;
-  int maxCut = 0;  // > 0: every lightcuts variant's maximum cut size in this case
+  int maxCut = 0;      // > 0: every lightcuts variant's maximum cut size in this case
+  float error = 0.0f;  // > 0: every lightcuts variant's ε in this case (instead of its own)
 };
 
 // "uniform-1024": `lights` lights laid out as `layout`.
@@ -40,8 +41,13 @@ SweepCase layoutCase(LightLayout layout, int lights);
 // The stability suite's adversarial cases (docs/stability.md): coincident lights, two far
 // groups, intensities over twelve decades, one bright light among a million dim ones, lights
 // 1e5 away, spots facing away, shading points inside cluster boxes, the maximum cut reached,
-// and counts 1, 2, 3 and 2^k ± 1.
+// dense clusters at ε = 0.005, and counts 1, 2, 3 and 2^k ± 1.
 std::vector<SweepCase> stabilityCases();
+
+// The variants run on case `c`: `variants`, with every lightcuts ε replaced by the case's own
+// where it sets one (one variant per rule then, in the order first met).
+std::vector<SweepVariant> caseVariants(const std::vector<SweepVariant>& variants,
+                                       const SweepCase& c);
 
 struct SweepSettings {
   int width = 640, height = 480;
