@@ -52,15 +52,22 @@ TEST(Bench, SweepReferenceRowSubsetLightsExactlyItsRows) {
               rows[0] && !rows[2]);
 }
 
-TEST(Bench, SweepRecordsHoldTheTotalRuleAndTheReferenceIsExact) {
-  context();
+// One timed frame a variant at 48x36.
+SweepSettings smallSweep(const std::vector<SweepVariant>& variants) {
   SweepSettings s;
   s.width = 48;
   s.height = 36;
   s.repeats = 1;
+  s.variants = variants;
+  return s;
+}
+
+TEST(Bench, SweepRecordsHoldTheTotalRuleAndTheReferenceIsExact) {
+  context();
+  SweepSettings s =
+      smallSweep(expandVariants({Method::Reference, Method::Lightcuts, Method::LightcutsDistance},
+                                {ErrorMode::Total}, {0.02f}));
   s.maxCut = 8000;
-  s.variants = expandVariants({Method::Reference, Method::Lightcuts, Method::LightcutsDistance},
-                              {ErrorMode::Total}, {0.02f});
   Sweep sweep(room(), s);
   EXPECT_GT(sweep.floorMs(), 0.0);
   const auto records = sweep.run(layoutCase(LightLayout::Clustered, 500), [](auto&) {});
@@ -87,12 +94,8 @@ TEST(Bench, SweepRecordsHoldTheTotalRuleAndTheReferenceIsExact) {
 
 TEST(Bench, ACaseWithItsOwnErrorRunsEachRuleOnceAtIt) {
   context();
-  SweepSettings s;
-  s.width = 48;
-  s.height = 36;
-  s.repeats = 1;
-  s.variants = expandVariants({Method::Reference, Method::Lightcuts},
-                              {ErrorMode::Node, ErrorMode::Total}, {0.02f, 0.05f});
+  const SweepSettings s = smallSweep(expandVariants(
+      {Method::Reference, Method::Lightcuts}, {ErrorMode::Node, ErrorMode::Total}, {0.02f, 0.05f}));
   const std::vector<SweepCase> suite = stabilityCases();
   const auto fine = std::find_if(suite.begin(), suite.end(), [](const SweepCase& c) {
     return c.name == "clustered-fine-16384";

@@ -154,6 +154,21 @@ const Scene& room(bool specular) {
   return *r;
 }
 
+// The room lit by `count` lights of `layout` (seed 7).
+Scene litRoom(bool specular, LightLayout layout, int count) {
+  Scene scene = room(specular);
+  scene.lights = layoutLights(layout, count, 7);
+  return scene;
+}
+
+// A reference render at the tests' image size.
+RenderRequest sizedRequest() {
+  RenderRequest request;
+  request.width = kWidth;
+  request.height = kHeight;
+  return request;
+}
+
 // One layout through lightcuts against the reference.
 struct CaseRun {
   Image reference, image, difference;
@@ -174,11 +189,8 @@ class Lightcuts : public ::testing::TestWithParam<Case> {
   CaseRun render(Method method, ErrorMode mode,
                  NodeColourCoding coding = NodeColourCoding::Rgb9e5) {
     const Case& c = GetParam();
-    Scene scene = room(c.specular);
-    scene.lights = layoutLights(c.layout, c.count, 7);
-    RenderRequest request;
-    request.width = kWidth;
-    request.height = kHeight;
+    const Scene scene = litRoom(c.specular, c.layout, c.count);
+    RenderRequest request = sizedRequest();
     CaseRun r;
     r.reference = renderScene(scene, request).image;
     request.method = method;
@@ -308,11 +320,8 @@ TEST_F(Lightcuts, KeptCutsHoldTheTotalRuleFrameByFrame) {
 // guarantee, and the node rule's worst pixel stays within 3 ε (measured 0.0583).
 TEST(LightcutsSpecular, SpecularPixelsShareCutsWithinTheRule) {
   constexpr double kEpsilon = 0.02;
-  Scene scene = room(true);
-  scene.lights = layoutLights(LightLayout::Mixed, 2000, 7);
-  RenderRequest request;
-  request.width = kWidth;
-  request.height = kHeight;
+  const Scene scene = litRoom(true, LightLayout::Mixed, 2000);
+  RenderRequest request = sizedRequest();
   const Image reference = renderScene(scene, request).image;
   request.method = Method::Lightcuts;
   request.lightcuts.error = float(kEpsilon);
@@ -345,11 +354,8 @@ TEST(LightcutsSpecular, SpecularPixelsShareCutsWithinTheRule) {
 // reached the maximum; now 5,259 share and none reaches it.
 TEST(LightcutsSharedCuts, GroupCutsMayExceedTheWalkLimit) {
   constexpr double kEpsilon = 0.02;
-  Scene scene = room(false);
-  scene.lights = layoutLights(LightLayout::Mixed, 4096, 7);
-  RenderRequest request;
-  request.width = kWidth;
-  request.height = kHeight;
+  const Scene scene = litRoom(false, LightLayout::Mixed, 4096);
+  RenderRequest request = sizedRequest();
   const Image reference = renderScene(scene, request).image;
   request.method = Method::Lightcuts;
   request.lightcuts.mode = ErrorMode::Total;
@@ -372,11 +378,8 @@ TEST(LightcutsSharedCuts, GroupCutsMayExceedTheWalkLimit) {
 // the total rule's guarantee against the reference of the moved lights.
 TEST(LightcutsMoving, RefittedTreesHoldTheTotalRule) {
   constexpr double kEpsilon = 0.02;
-  Scene scene = room(false);
-  scene.lights = layoutLights(LightLayout::Mixed, 2000, 7);
-  RenderRequest request;
-  request.width = kWidth;
-  request.height = kHeight;
+  const Scene scene = litRoom(false, LightLayout::Mixed, 2000);
+  RenderRequest request = sizedRequest();
   request.method = Method::Lightcuts;
   request.lightcuts.mode = ErrorMode::Total;
   request.lightcuts.error = float(kEpsilon);
