@@ -6,6 +6,7 @@
 
 #include "app/commands.h"
 #include "base/output_file.h"
+#include "cuts/tile_cuts.h"
 #include "render/render_job.h"
 #include "scene/image_io.h"
 #include "tools/progress.h"
@@ -152,8 +153,10 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
     if (c.pixelsAtMaxCut > 0) {
       std::cerr << "manylight: " << output << ": " << c.pixelsAtMaxCut << " of " << c.pixels
-                << " pixels reached the maximum cut (--max-cut " << request.lightcuts.maxCut
-                << ") before the error rule held: their error is not bounded"
+                << " pixels reached the maximum cut (--max-cut " << request.lightcuts.maxCut << "; "
+                << kSharedCutLimit
+                << " for cuts shared by groups of pixels) before the error rule held: their error "
+                   "is not bounded"
                 << (a.maxCutMask.empty() ? " (--max-cut-mask shows where)" : "") << "\n";
     }
     stats["pixels_shared_cut"] = c.pixelsSharedCut;

@@ -13,9 +13,8 @@ namespace manylight {
 
 namespace {
 
-// Under the total rule, a square whose cut filled up is split into quarters only if the
-// cut's summed bound was within this factor of the rule's target.
-constexpr float kSplitShortfall = 8.0f;
+// See ownCutsFit.
+constexpr float kWalkShortfall = 16.0f;
 
 // One thread's cuts (numbered in order; cutOfPixel holds these numbers until the merge) and
 // their entries.
@@ -83,6 +82,30 @@ bool materials(const GBufferPixels& px, const Group& group, std::vector<Group>& 
   return true;
 }
 
+// Whether the pixels of `group`, whose cut under the total rule filled up (RegionCut::full),
+// may find cuts of their own within rule.ownCut nodes: true when one of five of them does on
+// the CPU, or comes within kWalkShortfall of its target (RegionCut::walkFirst). A point's
+// bounds can be far tighter than a square's: with 65,536 clustered lights (320×240), most
+// pixels of full squares met the rule in their own walks, where the CPU's cuts of the five
+// mostly ended 4–8 times over its target at a quarter of ε (kTotalMargin); with 65,536 mixed
+// lights the five ended with bounds above their estimates.
+bool ownCutsFit(const TileCutter& cutter, CutWorkspace& work, const GBufferPixels& px,
+                const Group& group, const CutRule& rule, Part& part) {
+  CutRule own = rule;
+  own.maxCut = std::min(rule.ownCut, rule.maxCut);
+  own.shareFull = false;
+  std::vector<std::uint32_t> unused;
+  const std::size_t n = group.pixels.size();
+  for (const std::size_t k : {n / 2, std::size_t(0), n - 1, n / 4, 3 * n / 4}) {
+    ShadingRegion point;
+    if (!shadingRegion(px, {group.pixels[k]}, point)) continue;
+    const RegionCut r = cutter.cutRegion(work, point, own, true, unused);
+    part.bounds += r.bounds;
+    if (!r.perPixel || r.shortfall < kWalkShortfall) return true;
+  }
+  return false;
+}
+
 // The covered pixels of the square of `top` pixels at (x0, y0) that share cuts (and are
 // marked in `only`, when given).
 Group squareAt(const GBufferPixels& px, int x0, int y0, int top,
@@ -105,15 +128,16 @@ std::size_t RegionCut::entryTexels() const {
 }
 
 void RegionCut::writeHeader(std::uint32_t firstEntryTexel, std::uint32_t* words) const {
-  const std::uint32_t header[8] = {
-      firstEntryTexel,
-      std::uint32_t(counts[0]),
-      std::uint32_t(counts[1]),
-      std::uint32_t(counts[2]),
-      layout::wordOf(check.x),
-      layout::wordOf(check.y),
-      layout::wordOf(check.z),
-      std::uint32_t(folded) | (lobes ? kLobesBit : 0u) | std::uint32_t(zeros) << 16};
+  const std::uint32_t header[8] = {firstEntryTexel,
+                                   std::uint32_t(counts[0]),
+                                   std::uint32_t(counts[1]),
+                                   std::uint32_t(counts[2]),
+                                   layout::wordOf(check.x),
+                                   layout::wordOf(check.y),
+                                   layout::wordOf(check.z),
+                                   std::uint32_t(folded) | (lobes ? kLobesBit : 0u) |
+                                       std::uint32_t(zeros) << 16 | (full ? kFullCutBit : 0u) |
+                                       (walkFirst ? kWalkFirstBit : 0u)};
   std::copy_n(header, 8, words);
 }
 
@@ -165,6 +189,7 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
         part.bounds += result.bounds;
       }
     }
+    if (tried && result.full) result.walkFirst = ownCutsFit(cutter, work, px, group, rule, part);
     if (tried && !result.perPixel) {
       for (const int i : group.pixels) cutOfPixel[std::size_t(i)] = std::uint32_t(part.cuts.size());
       part.cuts.push_back(result);
@@ -176,11 +201,10 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
       ++part.splits;
       continue;
     }
-    // Smaller squares have tighter bounds: try the quarters. Under the total rule, a cut
-    // that filled up far from its target fills up in the quarters too (its bounds add up
-    // over the whole cut); under the node rule the culprit is mostly a light near one
-    // corner, which a quarter leaves out.
-    if (cone && group.size > fine && (!rule.total || result.shortfall < kSplitShortfall)) {
+    // Smaller squares have tighter bounds: try the quarters. Under the node rule the culprit
+    // is mostly a light near one corner, which a quarter leaves out; under the total rule
+    // the quarters may meet the rule, or take a full cut closer to it (RegionCut::full).
+    if (cone && group.size > fine) {
       quarters(px, group, todo, group.seed);
       continue;
     }

@@ -109,10 +109,14 @@ bool TileCutter::refine(Cut& cut) const {
       // cuts there would be far larger).
       // Larger groups split instead: the quarters' cuts are smaller, and so cheaper per pixel.
       if (cut.finest && cut.holds(1.0f, top, cut.errorSum)) break;
-      cut.result.perPixel = true;  // the tile's cut is full: its pixels cut for themselves
       const float want = cut.target(cut.margin(), cut.errorSum);
       const float have = rule.total ? maxOf(cut.errorSum) : top;
       cut.result.shortfall = want > 0.0f ? have / want : std::numeric_limits<float>::infinity();
+      if (rule.total && rule.shareFull && !cut.wantSeed && cut.sharedFull(top)) {
+        cut.result.full = true;
+        break;
+      }
+      cut.result.perPixel = true;  // the tile's cut is full: its pixels cut for themselves
       if (!cut.wantSeed) return false;
       break;  // still a seed
     }

@@ -85,6 +85,12 @@ struct CutRule {
   float error = 0.02f;           // ε
   bool total = false;            // the total rule; else the node rule
   int maxCut = kSharedCutLimit;  // the most entries of a shared cut
+  // Under the total rule, a full cut that smaller groups would not bring within the rule is
+  // shared all the same (RegionCut::full), unless a pixel's own cut of at most ownCut nodes
+  // (--max-cut) meets it. Playback's cells split instead (cuts/cell_cuts.h), and fall back to
+  // the frame's squares.
+  bool shareFull = true;
+  int ownCut = 2000;
 };
 
 // The frame's shared cuts. Each pixel names its cut (cutOfPixel, one word per pixel, rows
@@ -94,10 +100,12 @@ struct CutRule {
 //                 directional, point and spot trees, in that order
 //   texel 2c + 1  U (node rule) or B (total rule) per unit albedo, as float bits; how many
 //                 entries the far field holds (low 15 bits), whether the group has specular
-//                 lobes (bit 15, kLobesBit), and how many entries were left out because
-//                 they give nothing at any pixel of the group (high 16 bits: a spot whose
-//                 cone turns away from all of it, a light behind every normal or out of
-//                 range of the nearest pixel)
+//                 lobes (bit 15, kLobesBit), how many entries were left out because they
+//                 give nothing at any pixel of the group (bits 16–29: a spot whose cone
+//                 turns away from all of it, a light behind every normal or out of range of
+//                 the nearest pixel), whether its pixels walk their own cuts before they
+//                 take it (bit 30, kWalkFirstBit) and whether the cut is full (bit 31,
+//                 kFullCutBit)
 //   from texel 2·cuts: a cut with lobes first has two texels, its U or B per unit specular
 //     colour (the Phong lobe's bounds, below) and its far field's specular radiance per unit
 //     specular colour S (constant over the group); then its far field (cuts/far_field.h:
@@ -126,6 +134,12 @@ struct TileCuts {
 
 inline constexpr std::uint32_t kNoSharedCut = 0xffffffffu;
 inline constexpr std::uint32_t kLobesBit = 0x8000u;
+// A full cut (RegionCut::full): a pixel whose check fails takes it all the same, and counts
+// as at the maximum, instead of walking a cut of its own; with kWalkFirstBit, after walking
+// one, if that one reached the maximum with a larger bound.
+inline constexpr std::uint32_t kFullCutBit = 0x80000000u;
+inline constexpr std::uint32_t kWalkFirstBit = 0x40000000u;
+static_assert(kSharedCutLimit < (1 << 14), "a cut counts its left-out entries in 14 bits");
 // Both rules hold on a pixel whose bound is at most this (near-black pixels), on the CPU and
 // in glsl/lighting_lightcuts.frag.
 inline constexpr float kAbsoluteFloor = 1e-6f;
@@ -140,8 +154,16 @@ struct RegionCut {
   glm::vec3 lobeCheck{0.0f};    // U or B per unit specular colour
   glm::vec3 farSpecular{0.0f};  // the far field's specular radiance per unit specular colour
   bool perPixel = false;        // full: the group's pixels cut for themselves
-  long long bounds = 0;         // node bounds evaluated
-  float shortfall = 0.0f;       // a full cut: how far its measure was above the rule's target
+  // Full, under the total rule, where smaller groups would not meet the rule either
+  // (TileCutter::Cut::sharedFull): shared all the same, and its pixels that fail their check
+  // count as at the maximum. They take it at once where no pixel of five of the group meets
+  // the rule with a cut of its own (--max-cut ≤ kSharedCutLimit nodes; cuts/cut_frame.cpp
+  // probes them); else (walkFirst) they walk their own first, and take the full cut where
+  // the walk reaches its maximum with a larger bound.
+  bool full = false;
+  bool walkFirst = false;
+  long long bounds = 0;    // node bounds evaluated
+  float shortfall = 0.0f;  // a full cut: how far its measure was above the rule's target
 
   // Its entries' texels (far field included).
   std::size_t entryTexels() const;
@@ -200,6 +222,10 @@ inline constexpr int kFinestTile = 4;
 // size take cuts up to the maximum (CutRule::maxCut), since their pixels would otherwise walk
 // cuts of their own, each about as costly as a 4×4 group's shared cut.
 inline constexpr int kSplitCut = 1000;
+// Under the total rule, a square whose cut filled up with its summed bound this many times
+// the rule's target or more is not split for the rule's sake: its bounds add up over the
+// whole cut, so its quarters' cuts fill up too (TileCutter::Cut::sharedFull).
+inline constexpr float kSplitShortfall = 8.0f;
 inline constexpr float kSplitError = 0.02f;
 inline int splitCut(const CutRule& rule) {
   const float scale = std::max(1.0f, kSplitError / std::max(rule.error, 1e-6f));

@@ -389,6 +389,12 @@ vec3 farField(int k) {
   return e;
 }
 
+// A full cut the pixel walks its own cut before it takes (kWalkFirstBit): its sum and
+// entries.
+vec3 fullSum;
+int fullCut;
+bool hasFull = false;
+
 bool tileCut() {
   uint c = texelFetch(uCutOfPixel, ivec2(gl_FragCoord.xy), 0).r;
   if (c == kNoSharedCut) return false;
@@ -397,7 +403,16 @@ bool tileCut() {
   vec3 bound = s.albedo * uintBitsToFloat(check.xyz);
   ivec3 counts = ivec3(head.yzw);
   int folded = int(check.w & 0x7fffu);
-  int zeros = int(check.w >> 16u);  // entries left out: nothing at any pixel of the group
+  int zeros = int((check.w >> 16u) & 0x3fffu);  // entries left out: nothing at any pixel of it
+  // A full cut (cuts/tile_cuts.h, RegionCut::full): taken where the rule fails, after the
+  // pixel's own walk where the group's pixels may meet the rule with theirs (kWalkFirstBit).
+  bool full = (check.w & kFullCutBit) != 0u;
+  bool walkFirst = (check.w & kWalkFirstBit) != 0u;
+#ifdef SHARED_PASS
+  if (walkFirst) return false;
+#elif defined(OWN_PASS)
+  if (!walkFirst) return false;  // its check failed in SHARED_PASS
+#endif
   vec3 sum = vec3(0.0);
   int k;
   int first = int(head.x);
@@ -436,11 +451,18 @@ bool tileCut() {
   // The loop iterations either sum ran: two directional or point entries an iteration.
   iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;
   bool holds = ruleHolds(maxOf(bound), bound, sum);
-  if (holds) {
+  if (holds || (full && !walkFirst)) {
     estimateSum = sum;
     cutSize = count + folded + zeros;
+    atMax = !holds;
+    return true;
   }
-  return holds;
+  if (full) {
+    fullSum = sum;
+    fullCut = count + folded + zeros;
+    hasFull = true;
+  }
+  return false;
 }
 #endif
 
@@ -483,12 +505,22 @@ void main() {
       nodeRuleCut();
     } else {
       totalRuleCut();
+#ifdef TILE_CUTS
+      // A walk that ended at the maximum takes its group's full cut instead, of up to
+      // kSharedCutLimit entries refined largest bound first: with 65,536 uniform, mixed or
+      // clustered lights (320×240) the 99th percentile of those pixels' errors was lower
+      // (cuts/tile_cuts.h, RegionCut::full), although their bounds were mostly larger.
+      if (atMax && hasFull) {
+        estimateSum = fullSum;
+        cutSize = fullCut;
+      }
+#endif
     }
   }
 #endif
 #endif
   oRadiance = vec4(estimateSum, 0.0);
-  oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations),
-                   tookTileCut ? float(kCutStatsSharedCut)
-                   : atMax ? float(kCutStatsOwnCutAtMax) : float(kCutStatsOwnCut));
+  int kind = tookTileCut ? (atMax ? kCutStatsSharedCutAtMax : kCutStatsSharedCut)
+                         : (atMax ? kCutStatsOwnCutAtMax : kCutStatsOwnCut);
+  oCutStats = vec4(float(cutSize), float(lightEvaluations), float(nodeEvaluations), float(kind));
 }

@@ -14,7 +14,7 @@
 namespace manylight::glsl {
 
 // glsl/lighting_lightcuts.frag. SharedPass and OwnPass are the two passes of shared
-// (tile) cuts, render/lightcuts_method.cpp; SharedPass comes with TileCuts.
+// (tile) cuts, render/lightcuts_method.cpp; both come with TileCuts (OwnPass reads full cuts).
 enum LightcutsFlag : unsigned {
   kLightcutsDistance = 1u << 0,
   kLightcutsHasSpecular = 1u << 1,
@@ -45,9 +45,10 @@ std::vector<std::string> gbufferDefines(Aov aov);
 
 // The w of glsl/lighting_lightcuts.frag's oCutStats on a covered pixel (0 on background).
 enum CutStatsKind : int {
-  kCutStatsOwnCut = 1,       // a cut of its own
-  kCutStatsOwnCutAtMax = 2,  // a cut of its own that hit uMaxCut
-  kCutStatsSharedCut = 3,    // its group's shared cut
+  kCutStatsOwnCut = 1,          // a cut of its own
+  kCutStatsOwnCutAtMax = 2,     // a cut of its own that hit uMaxCut
+  kCutStatsSharedCut = 3,       // its group's shared cut
+  kCutStatsSharedCutAtMax = 4,  // its group's full cut, whose rule failed (kFullCutBit)
 };
 
 struct ProgramVariants {

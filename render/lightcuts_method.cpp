@@ -125,7 +125,7 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     pass(glsl::kLightcutsTileCuts | glsl::kLightcutsSharedPass, true);
     glStencilFunc(GL_EQUAL, 1, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    pass(glsl::kLightcutsOwnPass, false);
+    pass(glsl::kLightcutsTileCuts | glsl::kLightcutsOwnPass, true);
     glDisable(GL_STENCIL_TEST);
   } else {
     pass(0u, false);
@@ -162,7 +162,8 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const View& view, bool sp
   }
   // Shared cuts are not held to settings.maxCut, the most nodes a pixel walks itself
   // (kSharedCutLimit says why).
-  const CutRule rule{settings.error, settings.mode == ErrorMode::Total, kSharedCutLimit};
+  CutRule rule{settings.error, settings.mode == ErrorMode::Total, kSharedCutLimit};
+  rule.ownCut = settings.maxCut;
   const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
   if (settings.keepCuts) {
     if (!cells_) cells_ = std::make_unique<CellCuts>(*tileCutter_);
@@ -205,8 +206,9 @@ CutStats LightcutsMethod::cutStats() const {
     nodeEvals += texels[i + 2];
     stats.maxCut = std::max(stats.maxCut, int(texels[i]));
     const int kind = int(texels[i + 3] + 0.5f);
-    if (kind == glsl::kCutStatsSharedCut) ++stats.pixelsSharedCut;
-    if (kind == glsl::kCutStatsOwnCutAtMax) {
+    const bool shared = kind == glsl::kCutStatsSharedCut || kind == glsl::kCutStatsSharedCutAtMax;
+    if (shared) ++stats.pixelsSharedCut;
+    if (kind == glsl::kCutStatsOwnCutAtMax || kind == glsl::kCutStatsSharedCutAtMax) {
       ++stats.pixelsAtMaxCut;
       const std::size_t pixel = i / 4, x = pixel % width_, y = pixel / width_;
       stats.atMaxCut[(height_ - 1 - y) * width_ + x] = 1;  // GL rows run bottom-up

@@ -224,6 +224,32 @@ TEST(TileCuts, AFullCutAtTheFinestSizeIsSharedWhenItMeetsTheRuleWithoutTheMargin
   EXPECT_LE(c.worstOverBound, 1.0001);
 }
 
+// Under the total rule, a full cut that smaller groups would not bring within the rule (at
+// the finest size, or kSplitShortfall from its target) is shared and marked full: its pixels
+// take it instead of walking cuts of their own, which would reach their maximum too. Its
+// bound still holds at every pixel. Under the node rule full cuts are not shared. (2,000
+// uniform lights, at most 200 nodes.)
+TEST(TileCuts, UnderTheTotalRuleAHopelessCutIsSharedAndMarkedFull) {
+  const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
+  const SyntheticGBuffer g;
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  auto fullCuts = [](const TileCuts& cuts) {
+    int full = 0;
+    for (int c = 0; c < cuts.sharedCuts; ++c) full += (cuts.texels[8 * c + 7] & kFullCutBit) != 0;
+    return full;
+  };
+  const TileCuts total = cutter.cut(g.pixels(), 16, CutRule{0.02f, true, 200}, 2);
+  const Checked c = checkCuts(g, lights, total);
+  EXPECT_EQ(c.perPixel, 0);
+  EXPECT_EQ(c.sharedPixels, 3712);
+  EXPECT_EQ(c.failing, 0);
+  EXPECT_LE(c.worstOverBound, 1.0001);
+  EXPECT_EQ(fullCuts(total), total.sharedCuts);
+  const TileCuts node = cutter.cut(g.pixels(), 16, CutRule{0.001f, false, 200}, 2);
+  EXPECT_GT(checkCuts(g, lights, node).perPixel, 0);
+  EXPECT_EQ(fullCuts(node), 0);
+}
+
 // Groups larger than the finest split once their cut would exceed kSplitCut entries at
 // ε = kSplitError, proportionally more at smaller ε, never past the maximum.
 TEST(TileCuts, GroupsSplitAtLargerCutsForSmallerErrors) {
