@@ -101,11 +101,9 @@ struct CutRule {
 //   texel 2c + 1  U (node rule) or B (total rule) per unit albedo, as float bits; how many
 //                 entries the far field holds (low 15 bits), whether the group has specular
 //                 lobes (bit 15, kLobesBit), how many entries were left out because they
-//                 give nothing at any pixel of the group (bits 16–29: a spot whose cone
+//                 give nothing at any pixel of the group (bits 16–30: a spot whose cone
 //                 turns away from all of it, a light behind every normal or out of range of
-//                 the nearest pixel), whether its pixels walk their own cuts before they
-//                 take it (bit 30, kWalkFirstBit) and whether the cut is full (bit 31,
-//                 kFullCutBit)
+//                 the nearest pixel), and whether the cut is full (bit 31, kFullCutBit)
 //   from texel 2·cuts: a cut with lobes first has two texels, its U or B per unit specular
 //     colour (the Phong lobe's bounds, below) and its far field's specular radiance per unit
 //     specular colour S (constant over the group); then its far field (cuts/far_field.h:
@@ -135,11 +133,9 @@ struct TileCuts {
 inline constexpr std::uint32_t kNoSharedCut = 0xffffffffu;
 inline constexpr std::uint32_t kLobesBit = 0x8000u;
 // A full cut (RegionCut::full): a pixel whose check fails takes it all the same, and counts
-// as at the maximum, instead of walking a cut of its own; with kWalkFirstBit, after walking
-// one, if that one reached the maximum with a larger bound.
+// as at the maximum, instead of walking a cut of its own.
 inline constexpr std::uint32_t kFullCutBit = 0x80000000u;
-inline constexpr std::uint32_t kWalkFirstBit = 0x40000000u;
-static_assert(kSharedCutLimit < (1 << 14), "a cut counts its left-out entries in 14 bits");
+static_assert(kSharedCutLimit < (1 << 15), "a cut counts its left-out entries in 15 bits");
 // Both rules hold on a pixel whose bound is at most this (near-black pixels), on the CPU and
 // in glsl/lighting_lightcuts.frag.
 inline constexpr float kAbsoluteFloor = 1e-6f;
@@ -155,13 +151,12 @@ struct RegionCut {
   glm::vec3 farSpecular{0.0f};  // the far field's specular radiance per unit specular colour
   bool perPixel = false;        // full: the group's pixels cut for themselves
   // Full, under the total rule, where smaller groups would not meet the rule either
-  // (TileCutter::Cut::sharedFull): shared all the same, and its pixels that fail their check
-  // count as at the maximum. They take it at once where no pixel of five of the group meets
-  // the rule with a cut of its own (--max-cut ≤ kSharedCutLimit nodes; cuts/cut_frame.cpp
-  // probes them); else (walkFirst) they walk their own first, and take the full cut where
-  // the walk reaches its maximum with a larger bound.
+  // (TileCutter::Cut::sharedFull): shared all the same, unless a pixel of five of the group
+  // comes close to meeting the rule with a cut of its own (cuts/cut_frame.cpp probes them;
+  // their pixels then walk their own). Its pixels that fail their check take it and count as
+  // at the maximum: their own walks, of at most --max-cut (≤ kSharedCutLimit) nodes, would
+  // reach theirs too.
   bool full = false;
-  bool walkFirst = false;
   long long bounds = 0;    // node bounds evaluated
   float shortfall = 0.0f;  // a full cut: how far its measure was above the rule's target
 
@@ -223,8 +218,9 @@ inline constexpr int kFinestTile = 4;
 // cuts of their own, each about as costly as a 4×4 group's shared cut.
 inline constexpr int kSplitCut = 1000;
 // Under the total rule, a square whose cut filled up with its summed bound this many times
-// the rule's target or more is not split for the rule's sake: its bounds add up over the
-// whole cut, so its quarters' cuts fill up too (TileCutter::Cut::sharedFull).
+// the rule's target or more would not meet the rule in quarters either (its bounds add up
+// over the whole cut): it may take its full cut (TileCutter::Cut::sharedFull), and splits
+// only where that one's nodes are too coarse.
 inline constexpr float kSplitShortfall = 8.0f;
 inline constexpr float kSplitError = 0.02f;
 inline int splitCut(const CutRule& rule) {

@@ -361,7 +361,8 @@ void totalRuleCut() {
 // The cut this pixel shares with its group, found on the CPU with bounds that hold at every
 // pixel of the group (cuts/tile_cuts.h documents it and the texels): sums its
 // representatives and checks the stopping rule for this pixel. Returns false, leaving the
-// pixel to cut for itself, when it has no shared cut or the rule does not hold here.
+// pixel to cut for itself, when it has no shared cut or the rule does not hold here, unless
+// the cut is full (kFullCutBit): then it takes it, counted as at the maximum (atMax).
 uniform usamplerBuffer uTileCuts;
 uniform usampler2D uCutOfPixel;
 
@@ -389,12 +390,6 @@ vec3 farField(int k) {
   return e;
 }
 
-// A full cut the pixel walks its own cut before it takes (kWalkFirstBit): its sum and
-// entries.
-vec3 fullSum;
-int fullCut;
-bool hasFull = false;
-
 bool tileCut() {
   uint c = texelFetch(uCutOfPixel, ivec2(gl_FragCoord.xy), 0).r;
   if (c == kNoSharedCut) return false;
@@ -403,16 +398,9 @@ bool tileCut() {
   vec3 bound = s.albedo * uintBitsToFloat(check.xyz);
   ivec3 counts = ivec3(head.yzw);
   int folded = int(check.w & 0x7fffu);
-  int zeros = int((check.w >> 16u) & 0x3fffu);  // entries left out: nothing at any pixel of it
-  // A full cut (cuts/tile_cuts.h, RegionCut::full): taken where the rule fails, after the
-  // pixel's own walk where the group's pixels may meet the rule with theirs (kWalkFirstBit).
+  int zeros = int((check.w >> 16u) & 0x7fffu);  // entries left out: nothing at any pixel of it
+  // A full cut (cuts/tile_cuts.h, RegionCut::full): taken where the rule fails too.
   bool full = (check.w & kFullCutBit) != 0u;
-  bool walkFirst = (check.w & kWalkFirstBit) != 0u;
-#ifdef SHARED_PASS
-  if (walkFirst) return false;
-#elif defined(OWN_PASS)
-  if (!walkFirst) return false;  // its check failed in SHARED_PASS
-#endif
   vec3 sum = vec3(0.0);
   int k;
   int first = int(head.x);
@@ -451,18 +439,12 @@ bool tileCut() {
   // The loop iterations either sum ran: two directional or point entries an iteration.
   iterationsLeft -= (counts.x + 1) / 2 + (counts.y + 1) / 2 + counts.z + 6;
   bool holds = ruleHolds(maxOf(bound), bound, sum);
-  if (holds || (full && !walkFirst)) {
+  if (holds || full) {
     estimateSum = sum;
     cutSize = count + folded + zeros;
     atMax = !holds;
-    return true;
   }
-  if (full) {
-    fullSum = sum;
-    fullCut = count + folded + zeros;
-    hasFull = true;
-  }
-  return false;
+  return holds || full;
 }
 #endif
 
@@ -505,16 +487,6 @@ void main() {
       nodeRuleCut();
     } else {
       totalRuleCut();
-#ifdef TILE_CUTS
-      // A walk that ended at the maximum takes its group's full cut instead, of up to
-      // kSharedCutLimit entries refined largest bound first: with 65,536 uniform, mixed or
-      // clustered lights (320×240) the 99th percentile of those pixels' errors was lower
-      // (cuts/tile_cuts.h, RegionCut::full), although their bounds were mostly larger.
-      if (atMax && hasFull) {
-        estimateSum = fullSum;
-        cutSize = fullCut;
-      }
-#endif
     }
   }
 #endif

@@ -30,7 +30,7 @@ std::vector<std::vector<std::string>> lightcutsVariants() {
     out.push_back(lightcutsDefines(base));
     if (base & kLightcutsDistance) continue;  // the distance criterion has no shared cuts
     out.push_back(lightcutsDefines(base | kLightcutsTileCuts | kLightcutsSharedPass));
-    out.push_back(lightcutsDefines(base | kLightcutsTileCuts | kLightcutsOwnPass));
+    out.push_back(lightcutsDefines(base | kLightcutsOwnPass));
   }
   return out;
 }
@@ -125,7 +125,6 @@ std::string layoutPrelude() {
   out += constLine("int", "kCutStatsSharedCut", std::to_string(kCutStatsSharedCut));
   out += constLine("int", "kCutStatsSharedCutAtMax", std::to_string(kCutStatsSharedCutAtMax));
   out += constLine("uint", "kFullCutBit", std::to_string(kFullCutBit) + "u");
-  out += constLine("uint", "kWalkFirstBit", std::to_string(kWalkFirstBit) + "u");
   out += constLine("int", "kMaxOctreeLevels", std::to_string(layout::kMaxOctreeLevels));
   out += constLine("uint", "kOctreeLeafBit", std::to_string(layout::kOctreeLeafBit) + "u");
   out += constLine("int", "kOctreeEntriesPerPass", std::to_string(layout::kOctreeEntriesPerPass));

@@ -14,7 +14,7 @@
 namespace manylight::glsl {
 
 // glsl/lighting_lightcuts.frag. SharedPass and OwnPass are the two passes of shared
-// (tile) cuts, render/lightcuts_method.cpp; both come with TileCuts (OwnPass reads full cuts).
+// (tile) cuts, render/lightcuts_method.cpp; SharedPass comes with TileCuts.
 enum LightcutsFlag : unsigned {
   kLightcutsDistance = 1u << 0,
   kLightcutsHasSpecular = 1u << 1,

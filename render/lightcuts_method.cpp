@@ -125,7 +125,7 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     pass(glsl::kLightcutsTileCuts | glsl::kLightcutsSharedPass, true);
     glStencilFunc(GL_EQUAL, 1, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    pass(glsl::kLightcutsTileCuts | glsl::kLightcutsOwnPass, true);
+    pass(glsl::kLightcutsOwnPass, false);
     glDisable(GL_STENCIL_TEST);
   } else {
     pass(0u, false);

@@ -102,7 +102,7 @@ Checked checkCuts(const SyntheticGBuffer& g, const std::vector<Light>& lights,
       for (const Light& l : lights)
         exact += unitRadiance(l, p, n) * glm::dvec3(l.colour) * double(l.intensity);
       const std::uint32_t* e = cuts.texels.data() + std::size_t(head[0]) * 4;
-      if ((head[7] & 0xffffu) > 0) {  // far field entries (high 16 bits: entries left out)
+      if ((head[7] & 0x7fffu) > 0) {  // far field entries (cuts/tile_cuts.h: the word's bits)
         estimate += farFieldIrradiance(e, p, n) / shading::kPi;
         e += 4 * kFarFieldTexels;
         ++c.farFieldPixels;
@@ -225,10 +225,12 @@ TEST(TileCuts, AFullCutAtTheFinestSizeIsSharedWhenItMeetsTheRuleWithoutTheMargin
 }
 
 // Under the total rule, a full cut that smaller groups would not bring within the rule (at
-// the finest size, or kSplitShortfall from its target) is shared and marked full: its pixels
-// take it instead of walking cuts of their own, which would reach their maximum too. Its
-// bound still holds at every pixel. Under the node rule full cuts are not shared. (2,000
-// uniform lights, at most 200 nodes.)
+// the finest size, or kSplitShortfall from its target) is shared and marked full where its
+// every node meets the node rule at a quarter of ε and no probed pixel's own cut comes close
+// to the rule: its pixels take it instead of walking cuts of their own, which would reach
+// their maximum too. Its bound still holds at every pixel. Under the node rule full cuts are
+// not shared. (2,000 uniform lights, at most 400 nodes: 158 full cuts, 2,698 of 3,712 pixels
+// on them; before, every pixel walked its own cut.)
 TEST(TileCuts, UnderTheTotalRuleAHopelessCutIsSharedAndMarkedFull) {
   const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
   const SyntheticGBuffer g;
@@ -238,14 +240,14 @@ TEST(TileCuts, UnderTheTotalRuleAHopelessCutIsSharedAndMarkedFull) {
     for (int c = 0; c < cuts.sharedCuts; ++c) full += (cuts.texels[8 * c + 7] & kFullCutBit) != 0;
     return full;
   };
-  const TileCuts total = cutter.cut(g.pixels(), 16, CutRule{0.02f, true, 200}, 2);
+  const TileCuts total = cutter.cut(g.pixels(), 16, CutRule{0.02f, true, 400}, 2);
   const Checked c = checkCuts(g, lights, total);
-  EXPECT_EQ(c.perPixel, 0);
-  EXPECT_EQ(c.sharedPixels, 3712);
+  EXPECT_GT(c.sharedPixels, 2 * c.perPixel);
+  EXPECT_EQ(c.sharedPixels + c.perPixel, 3712);
   EXPECT_EQ(c.failing, 0);
   EXPECT_LE(c.worstOverBound, 1.0001);
-  EXPECT_EQ(fullCuts(total), total.sharedCuts);
-  const TileCuts node = cutter.cut(g.pixels(), 16, CutRule{0.001f, false, 200}, 2);
+  EXPECT_GT(fullCuts(total), total.sharedCuts / 2);
+  const TileCuts node = cutter.cut(g.pixels(), 16, CutRule{0.001f, false, 400}, 2);
   EXPECT_GT(checkCuts(g, lights, node).perPixel, 0);
   EXPECT_EQ(fullCuts(node), 0);
 }
