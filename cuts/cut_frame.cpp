@@ -102,11 +102,54 @@ bool ownCutsFit(const TileCutter& cutter, CutWorkspace& work, const GBufferPixel
   for (const std::size_t k : {n / 2, std::size_t(0), n - 1, n / 4, 3 * n / 4}) {
     ShadingRegion point;
     if (!shadingRegion(px, {group.pixels[k]}, point)) continue;
+    // One normal: no spread (shadingRegion allows round-off among a group's, which gives a
+    // light behind the normal a bound of sin(spread), and a dark pixel a cut that fills up).
+    point.cosSpread = 1.0f;
+    point.sinSpread = 0.0f;
     const RegionCut r = cutter.cutRegion(work, point, own, true, unused);
     part.bounds += r.bounds;
     if (!r.perPixel || r.shortfall < kWalkShortfall) return true;
   }
   return false;
+}
+
+// Under the total rule, a cut that filled up far from its target (full, or too coarse to
+// share: kSplitShortfall) leaves its pixels to their own cuts where those may meet the rule
+// (ownCutsFit, asked once per group), rather than to quarters, which would fill up too.
+struct OwnCuts {
+  const TileCutter& cutter;
+  CutWorkspace& work;
+  const GBufferPixels& px;
+  Group& group;
+  const CutRule& rule;
+  Part& part;
+  int walks = -1;  // ownCutsFit's answer, once asked
+  bool farOff(const RegionCut& r) const {
+    return rule.total && (r.full || (r.perPixel && !(r.shortfall < kSplitShortfall)));
+  }
+  bool fit() {
+    if (walks < 0) walks = ownCutsFit(cutter, work, px, group, rule, part) ? 1 : 0;
+    return walks == 1;
+  }
+};
+
+// The cut of `own.group`, of the shading points `g`, its entries appended to the part's.
+// A cut from the group's seed that is too fine here starts over from the roots, as does one
+// full from it (a seeded cut ends farther from its target, and the choices after go by how
+// far), unless the group's pixels walk their own cuts either way.
+RegionCut groupCut(OwnCuts& own, const ShadingRegion& g, bool finest) {
+  Part& part = own.part;
+  const std::size_t entry = part.entries.size();
+  const CutSeed* seed = own.group.seed.get();
+  RegionCut r = own.cutter.cutRegion(own.work, g, own.rule, finest, part.entries, seed);
+  part.bounds += r.bounds;
+  if ((r.perPixel || r.full) && seed && !(own.farOff(r) && own.fit())) {
+    part.entries.resize(entry);
+    own.group.seed = nullptr;
+    r = own.cutter.cutRegion(own.work, g, own.rule, finest, part.entries);
+    part.bounds += r.bounds;
+  }
+  return r;
 }
 
 // The covered pixels of the square of `top` pixels at (x0, y0) that share cuts (and are
@@ -185,21 +228,11 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
     }
     RegionCut result;
     const std::size_t entry = part.entries.size();
-    if (tried) {
-      result = cutter.cutRegion(work, g, rule, group.size <= fine, part.entries, group.seed.get());
-      part.bounds += result.bounds;
-      // The seed's cut was too fine here: start over, where it was full too (a seeded cut
-      // ends farther from its target, and the choices below go by how far).
-      if ((result.perPixel || result.full) && group.seed) {
-        part.entries.resize(entry);
-        group.seed = nullptr;
-        result = cutter.cutRegion(work, g, rule, group.size <= fine, part.entries);
-        part.bounds += result.bounds;
-      }
-    }
-    if (tried && result.full) {  // split into its surfaces first, as a group left to itself
+    OwnCuts own{cutter, work, px, group, rule, part};
+    if (tried) result = groupCut(own, g, group.size <= fine);
+    if (tried && own.farOff(result)) {  // split into its surfaces first, as any group alone
       const bool split = g.cosSpread < kSurfaceSpread && surfaces(px, group, g, todo);
-      if (split || ownCutsFit(cutter, work, px, group, rule, part)) {
+      if (split || own.fit()) {
         part.entries.resize(entry);  // else its pixels walk cuts of their own
         ++(split ? part.splits : part.perPixel);
         continue;
