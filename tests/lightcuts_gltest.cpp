@@ -169,6 +169,15 @@ RenderRequest sizedRequest() {
   return request;
 }
 
+// sizedRequest() through lightcuts under the total rule at `epsilon`.
+RenderRequest totalRuleRequest(double epsilon) {
+  RenderRequest request = sizedRequest();
+  request.method = Method::Lightcuts;
+  request.lightcuts.mode = ErrorMode::Total;
+  request.lightcuts.error = float(epsilon);
+  return request;
+}
+
 // One layout through lightcuts against the reference.
 struct CaseRun {
   Image reference, image, difference;
@@ -355,11 +364,8 @@ TEST(LightcutsSpecular, SpecularPixelsShareCutsWithinTheRule) {
 TEST(LightcutsSharedCuts, GroupCutsMayExceedTheWalkLimit) {
   constexpr double kEpsilon = 0.02;
   const Scene scene = litRoom(false, LightLayout::Mixed, 4096);
-  RenderRequest request = sizedRequest();
-  const Image reference = renderScene(scene, request).image;
-  request.method = Method::Lightcuts;
-  request.lightcuts.mode = ErrorMode::Total;
-  request.lightcuts.error = float(kEpsilon);
+  const Image reference = renderScene(scene, sizedRequest()).image;
+  RenderRequest request = totalRuleRequest(kEpsilon);
   ASSERT_EQ(request.lightcuts.maxCut, 2000);
   const RenderOutcome out = renderScene(scene, request);
   const CutStats& cuts = out.frame.cuts;
@@ -385,11 +391,8 @@ TEST(LightcutsSharedCuts, GroupCutsMayExceedTheWalkLimit) {
 TEST(LightcutsSharedCuts, FullCutsAreTakenAndCountedAtTheMaximum) {
   constexpr double kEpsilon = 0.02;
   const Scene scene = litRoom(false, LightLayout::Mixed, 65536);
-  RenderRequest request = sizedRequest();
-  const Image reference = renderScene(scene, request).image;
-  request.method = Method::Lightcuts;
-  request.lightcuts.mode = ErrorMode::Total;
-  request.lightcuts.error = float(kEpsilon);
+  const Image reference = renderScene(scene, sizedRequest()).image;
+  RenderRequest request = totalRuleRequest(kEpsilon);
   const RenderOutcome shared = renderScene(scene, request);
   request.lightcuts.tileSize = 1;  // every pixel walks its own cut
   const RenderOutcome walked = renderScene(scene, request);
@@ -414,10 +417,7 @@ TEST(LightcutsSharedCuts, FullCutsAreTakenAndCountedAtTheMaximum) {
 TEST(LightcutsMoving, RefittedTreesHoldTheTotalRule) {
   constexpr double kEpsilon = 0.02;
   const Scene scene = litRoom(false, LightLayout::Mixed, 2000);
-  RenderRequest request = sizedRequest();
-  request.method = Method::Lightcuts;
-  request.lightcuts.mode = ErrorMode::Total;
-  request.lightcuts.error = float(kEpsilon);
+  RenderRequest request = totalRuleRequest(kEpsilon);
   request.lightcuts.maxCut = kMaxCut;
   PreparedRender p(scene, request);
   std::vector<Light> lights = scene.lights;
