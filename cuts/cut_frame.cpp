@@ -14,7 +14,8 @@ namespace manylight {
 
 namespace {
 
-// See ownCutsFit.
+// How near its target a probed pixel's own cut may end for the group's pixels to walk
+// (ownCutsFit says why).
 constexpr float kWalkShortfall = 16.0f;
 
 // One thread's cuts (numbered in order; cutOfPixel holds these numbers until the merge) and

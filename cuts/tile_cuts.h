@@ -78,7 +78,8 @@ namespace manylight {
 // frame of 65,536 mixed lights took 5,337 cuts, whose finding took 1.4 s of its 1.6 s; at
 // 8,000 it takes 1,093 cuts and 0.7–0.9 s (docs/performance.md).
 inline constexpr int kSharedCutLimit = 8000;
-static_assert(kSharedCutLimit < (1 << 15), "the far field counts its entries in 15 bits");
+static_assert(kSharedCutLimit < (1 << 15),
+              "the far field's and the left-out entries' counts have 15 bits each (TileCuts)");
 
 // What the rule asks of a cut (see LightcutsSettings).
 struct CutRule {
@@ -135,7 +136,6 @@ inline constexpr std::uint32_t kLobesBit = 0x8000u;
 // A full cut (RegionCut::full): a pixel whose check fails takes it all the same, and counts
 // as at the maximum, instead of walking a cut of its own.
 inline constexpr std::uint32_t kFullCutBit = 0x80000000u;
-static_assert(kSharedCutLimit < (1 << 15), "a cut counts its left-out entries in 15 bits");
 // Both rules hold on a pixel whose bound is at most this (near-black pixels), on the CPU and
 // in glsl/lighting_lightcuts.frag.
 inline constexpr float kAbsoluteFloor = 1e-6f;

@@ -225,10 +225,10 @@ TEST(TileCuts, AFullCutAtTheFinestSizeIsSharedWhenItMeetsTheRuleWithoutTheMargin
 }
 
 // Under the total rule, a full cut that smaller groups would not bring within the rule (at
-// the finest size, or kSplitShortfall from its target) is shared and marked full where its
-// every node meets the node rule at a quarter of ε and no probed pixel's own cut comes close
-// to the rule: its pixels take it instead of walking cuts of their own, which would reach
-// their maximum too. Its bound still holds at every pixel. Under the node rule full cuts are
+// the finest size, or kSplitShortfall from its target) is shared and marked full where
+// every node's bound is within a quarter of ε of the estimate and no probed pixel's own cut
+// comes close to the rule: its pixels take it instead of walking cuts of their own, which would
+// reach their maximum too. Its bound still holds at every pixel. Under the node rule full cuts are
 // not shared. (2,000 uniform lights, at most 400 nodes: 158 full cuts, 2,698 of 3,712 pixels
 // on them; before, every pixel walked its own cut.)
 TEST(TileCuts, UnderTheTotalRuleAHopelessCutIsSharedAndMarkedFull) {
