@@ -195,6 +195,57 @@ void RegionCut::writeTexels(std::size_t cut, const std::uint32_t* words, std::si
   next += count;
 }
 
+// Holds the cuts of one square (the part's from `firstCut` on; `pixels` the square's) to
+// `budget` entry texels: while over it, drops the cut that costs the most texels per pixel
+// it serves, full cuts first, whose pixels then walk cuts of their own.
+static void holdToBudget(Part& part, std::size_t firstCut, const std::vector<int>& pixels,
+                         std::size_t budget, std::vector<std::uint32_t>& cutOfPixel) {
+  const std::size_t n = part.cuts.size() - firstCut;
+  std::vector<std::size_t> texels(n), served(n, 0);
+  std::size_t total = 0;
+  for (std::size_t k = 0; k < n; ++k) total += texels[k] = part.cuts[firstCut + k].entryTexels();
+  if (total <= budget) return;
+  for (const int i : pixels) {
+    const std::uint32_t c = cutOfPixel[std::size_t(i)];
+    if (c != kNoSharedCut && c >= firstCut) ++served[c - firstCut];
+  }
+  std::vector<std::size_t> order(n);
+  for (std::size_t k = 0; k < n; ++k) order[k] = k;
+  auto costlier = [&](std::size_t a, std::size_t b) {  // texels per pixel, compared exactly
+    const bool fa = part.cuts[firstCut + a].full, fb = part.cuts[firstCut + b].full;
+    if (fa != fb) return fa;
+    const std::size_t x = texels[a] * served[b], y = texels[b] * served[a];
+    return x != y ? x > y : a < b;
+  };
+  std::sort(order.begin(), order.end(), costlier);
+  std::vector<std::uint32_t> number(n);  // each cut's new number, kNoSharedCut when dropped
+  for (std::size_t j = 0; j < n && total > budget; ++j) {
+    total -= texels[order[j]];
+    number[order[j]] = kNoSharedCut;
+    ++part.perPixel;
+  }
+  std::size_t kept = firstCut, next = n > 0 ? part.entry[firstCut] : part.entries.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (number[k] == kNoSharedCut) continue;
+    const std::size_t from = part.entry[firstCut + k];
+    if (from != next)
+      std::copy(part.entries.begin() + std::ptrdiff_t(from),
+                part.entries.begin() + std::ptrdiff_t(from + 4 * texels[k]),
+                part.entries.begin() + std::ptrdiff_t(next));
+    part.cuts[kept] = part.cuts[firstCut + k];
+    part.entry[kept] = next;
+    number[k] = std::uint32_t(kept++);
+    next += 4 * texels[k];
+  }
+  part.cuts.resize(kept);
+  part.entry.resize(kept);
+  part.entries.resize(next);
+  for (const int i : pixels) {
+    std::uint32_t& c = cutOfPixel[std::size_t(i)];
+    if (c != kNoSharedCut && c >= firstCut) c = number[c - firstCut];
+  }
+}
+
 // Cuts `square` and the groups it splits into, on one thread: the shared cuts go to `part`,
 // each pixel's cut number (within the part) to `cutOfPixel`.
 static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBufferPixels& px,
@@ -203,6 +254,8 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
   const int fine = std::min(kFinestTile, tileSize);
   std::vector<Group> todo;
   std::vector<std::uint32_t> unused;
+  const std::size_t firstCut = part.cuts.size();
+  const std::vector<int> pixels = square.pixels;
   if (!square.pixels.empty()) todo.push_back(std::move(square));
   while (!todo.empty()) {
     Group group = std::move(todo.back());
@@ -259,6 +312,7 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
     }
     ++part.perPixel;
   }
+  holdToBudget(part, firstCut, pixels, rule.texelsPerPixel * pixels.size(), cutOfPixel);
 }
 
 TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& rule, int threads,

@@ -81,6 +81,19 @@ inline constexpr int kSharedCutLimit = 8000;
 static_assert(kSharedCutLimit < (1 << 15),
               "the far field's and the left-out entries' counts have 15 bits each (TileCuts)");
 
+// The most texels a frame's shared cuts take (1 GiB), shared among the squares of
+// TileCutter::cut in proportion to their pixels (CutRule::texelsPerPixel; the renderer also
+// holds it to what the driver's texture buffers hold). Past its share, a square's cuts that
+// cost the most texels per pixel they serve are dropped, full ones (RegionCut::full) first,
+// and their pixels walk cuts of their own. Unbounded, the total rule's full cuts shared by
+// groups of 4×4 pixels asked for 134 and 204 million texels at 16,384 uniform lights and
+// ε = 0.05 and 0.1 (640×480), past llvmpipe's texture buffers (2^27 texels), and the frame
+// failed. Measured on 65,536 mixed lights at 640×480: the node rule's cuts take 1.1
+// (ε = 0.02) and 4.5 (ε = 0.005) texels a pixel, the total rule's full cuts 32 (ε = 0.02),
+// none dropped at this budget's 218 a pixel (68 groups at 64 a pixel, whose walks made the
+// frame 3.5 s instead of 3.0 s). At 1920×1080 the share is 32 texels a pixel.
+inline constexpr std::size_t kCutTexelBudget = std::size_t(1) << 26;
+
 // What the rule asks of a cut (see LightcutsSettings).
 struct CutRule {
   float error = 0.02f;           // ε
@@ -92,6 +105,9 @@ struct CutRule {
   // the frame's squares.
   bool shareFull = true;
   int ownCut = 2000;
+  // TileCutter::cut: the most entry texels a square's cuts take per pixel that shares them
+  // (kCutTexelBudget over the frame's pixels, set by the renderer; unbounded here).
+  std::size_t texelsPerPixel = std::size_t(1) << 32;
 };
 
 // The frame's shared cuts. Each pixel names its cut (cutOfPixel, one word per pixel, rows
@@ -285,7 +301,9 @@ class TileCutter {
   TileCutter(PackedTrees packed, const std::vector<Light>& lights);
 
   // Cuts for every tile of the frame, on `threads` threads; only for the pixels marked in
-  // `only` (one byte per pixel) when it is given.
+  // `only` (one byte per pixel) when it is given. Each square of the frame's seeds (of
+  // tileSize << kSeedLevels pixels) keeps its cuts' entries within rule.texelsPerPixel texels
+  // per pixel that shares them.
   TileCuts cut(const GBufferPixels& pixels, int tileSize, const CutRule& rule, int threads,
                const std::vector<std::uint8_t>* only = nullptr) const;
 

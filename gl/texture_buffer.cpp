@@ -1,16 +1,23 @@
 #include "gl/texture_buffer.h"
 
+#include <algorithm>
+
 #include "gl/context.h"
 
 namespace manylight::gl {
 
 using namespace api;
 
-TextureBuffer uploadTextureBuffer(const void* data, std::size_t texels, GLenum format,
-                                  const std::string& what) {
+std::size_t maxTextureBufferTexels() {
   GLint maxTexels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  if (texels > std::size_t(maxTexels)) {
+  return std::size_t(std::max(maxTexels, 0));
+}
+
+TextureBuffer uploadTextureBuffer(const void* data, std::size_t texels, GLenum format,
+                                  const std::string& what) {
+  const std::size_t maxTexels = maxTextureBufferTexels();
+  if (texels > maxTexels) {
     throw GlError(what + " need " + std::to_string(texels) +
                   " texels, the driver's texture buffers hold " + std::to_string(maxTexels));
   }

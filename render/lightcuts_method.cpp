@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "gl/context.h"
+#include "gl/texture_buffer.h"
 #include "glsl/variants.h"
 #include "render/lighting_inputs.h"
 
@@ -164,6 +165,10 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const View& view, bool sp
   // (kSharedCutLimit says why).
   CutRule rule{settings.error, settings.mode == ErrorMode::Total, kSharedCutLimit};
   rule.ownCut = settings.maxCut;
+  // Every pixel may share a cut of its own (2 header texels) and its share of the entries.
+  const std::size_t pixelCount = std::max<std::size_t>(std::size_t(width_) * height_, 1);
+  const std::size_t perPixel = std::min(kCutTexelBudget, gl::maxTextureBufferTexels()) / pixelCount;
+  rule.texelsPerPixel = perPixel > 2 ? perPixel - 2 : 0;
   const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
   if (settings.keepCuts) {
     if (!cells_) cells_ = std::make_unique<CellCuts>(*tileCutter_);

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <map>
 #include <random>
+#include <set>
 
 #include "bake/light_pack.h"
 #include "bake/light_tree.h"
@@ -250,6 +251,43 @@ TEST(TileCuts, UnderTheTotalRuleAHopelessCutIsSharedAndMarkedFull) {
   const TileCuts node = cutter.cut(g.pixels(), 16, CutRule{0.001f, false, 400}, 2);
   EXPECT_GT(checkCuts(g, lights, node).perPixel, 0);
   EXPECT_EQ(fullCuts(node), 0);
+}
+
+// Past rule.texelsPerPixel, a square's (32×32 here) costliest cuts per pixel are dropped and
+// their pixels walk; the cuts kept are the ones found without the budget, renumbered.
+TEST(TileCuts, EachSquaresCutsStayWithinTheirTexelBudget) {
+  const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
+  const SyntheticGBuffer g;
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  CutRule rule{0.02f, true, 400};
+  const TileCuts free = cutter.cut(g.pixels(), 16, rule, 2);
+  rule.texelsPerPixel = 20;
+  const TileCuts held = cutter.cut(g.pixels(), 16, rule, 2);
+  auto words = [](const TileCuts& t, std::uint32_t c) {  // cut c's header and entries
+    const std::size_t end =
+        c + 1 < std::uint32_t(t.sharedCuts) ? t.texels[8 * (c + 1)] : t.texels.size() / 4;
+    std::vector<std::uint32_t> w(t.texels.begin() + 8 * c + 1, t.texels.begin() + 8 * c + 8);
+    w.insert(w.end(), t.texels.begin() + 4 * t.texels[8 * c], t.texels.begin() + 4 * end);
+    return w;
+  };
+  std::map<int, std::size_t> used, budget;  // entry texels by square (x / 32 + 2 · y / 32)
+  std::set<std::uint32_t> counted;
+  for (std::size_t i = 0; i < held.cutOfPixel.size(); ++i) {
+    const int square = int(i % kSize) / 32 + 2 * (int(i / kSize) / 32);
+    if (g.normal[i * 4 + 3] == 0.0f) continue;  // background
+    budget[square] += rule.texelsPerPixel;
+    if (free.cutOfPixel[i] == kNoSharedCut) continue;
+    const std::uint32_t c = held.cutOfPixel[i];
+    if (c == kNoSharedCut) continue;
+    EXPECT_EQ(words(held, c), words(free, free.cutOfPixel[i])) << "pixel " << i;
+    if (counted.insert(c).second) used[square] += words(held, c).size() / 4 - 1;
+  }
+  ASSERT_LT(held.sharedCuts, free.sharedCuts);
+  EXPECT_GT(held.sharedCuts, 0);
+  for (const auto& [square, texels] : used) EXPECT_LE(texels, budget[square]) << square;
+  const Checked c = checkCuts(g, lights, held);
+  EXPECT_EQ(c.failing, 0);
+  EXPECT_GT(c.perPixel, checkCuts(g, lights, free).perPixel);
 }
 
 // Groups larger than the finest split once their cut would exceed kSplitCut entries at
