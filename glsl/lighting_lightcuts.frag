@@ -74,63 +74,6 @@ vec3 unitTerm(int tree, int rep) {
 #endif
 }
 
-// Largest of u·(x − p)/|x − p| over the box, bounded through the largest numerator over the
-// nearest distance dMin.
-float cosineUpper(vec3 u, vec3 p, Node n, float dMin) {
-  vec3 m = max(u * (n.boxMin - p), u * (n.boxMax - p));
-  float num = m.x + m.y + m.z;
-  if (num <= 0.0) return 0.0;
-  return dMin > 0.0 ? min(num / dMin, 1.0) : 1.0;
-}
-
-// Smallest cosine over the box: the smallest numerator over the farthest distance dMax.
-float cosineLower(vec3 u, vec3 p, Node n, float dMax) {
-  vec3 m = min(u * (n.boxMin - p), u * (n.boxMax - p));
-  float num = m.x + m.y + m.z;
-  return num > 0.0 ? min(num / dMax, 1.0) : 0.0;
-}
-
-// Tighter where the box is small and far: the cone around the direction u·… to the box's
-// bounding sphere (centre c, radius r). Returns cos(max(θ − α, 0)) in .x and
-// cos(min(θ + α, π/2))⁺ in .y, θ the angle between u and the centre, α the sphere's angular
-// radius; (1, 0) when p is inside the sphere.
-vec2 sphereCosines(vec3 u, vec3 p, Node n) {
-  vec3 c = 0.5 * (n.boxMin + n.boxMax) - p;
-  float r2 = 0.25 * dot(n.boxMax - n.boxMin, n.boxMax - n.boxMin);
-  float d2 = dot(c, c);
-  if (d2 <= r2) return vec2(1.0, 0.0);
-  float cosT = dot(u, c) * inversesqrt(d2);
-  float sinT = sqrt(max(1.0 - cosT * cosT, 0.0));
-  float sinA = sqrt(r2 / d2);
-  float cosA = sqrt(1.0 - sinA * sinA);
-  float upper = cosT >= cosA ? 1.0 : cosT * cosA + sinT * sinA;
-  float lower = max(cosT * cosA - sinT * sinA, 0.0);
-  return vec2(upper, lower);
-}
-
-// The range window clamp(1 − (d²/range²)², 0, 1) (scene/shading_model.h).
-float window(float d2, float invRange2) {
-  float x = d2 * invRange2;
-  return clamp(1.0 - x * x, 0.0, 1.0);
-}
-
-// Whether some light of spot node n may shine on p: some direction from its box to p lies
-// within Θ of the axis (the box seen as its bounding sphere).
-bool spotMayReach(Node n, vec3 p) {
-  vec3 c = 0.5 * (n.boxMin + n.boxMax);
-  float r = 0.5 * length(n.boxMax - n.boxMin);
-  vec3 toP = p - c;
-  float d = length(toP);
-  if (d <= r) return true;
-  float sinA = r / d;
-  float cosA = sqrt(max(1.0 - sinA * sinA, 0.0));
-  float cosT = n.w2;
-  float sinSum = n.sinTheta * cosA + cosT * sinA;  // sin(Θ + α)
-  if (sinSum < 0.0) return true;                   // Θ + α beyond π
-  float cosSum = cosT * cosA - n.sinTheta * sinA;  // cos(Θ + α)
-  return dot(n.axis, toP) / d >= cosSum;
-}
-
 // Upper and lower bounds of node n's contribution (see the top of this file); the lower one
 // only when `wantLower` (the node rule needs none). Returns false when the upper bound is
 // unbounded (p inside the box).
@@ -357,6 +300,28 @@ void totalRuleCut() {
   atMax = true;  // out of loop iterations before the rule held
 }
 
+#ifndef DISTANCE
+// Under the total rule, a pixel whose cut reached the maximum sums every light instead where
+// they number at most uExactLimit and fit the loop budget left (one iteration a light): its
+// error is then float rounding, and the rule holds. One loop with one shading term: the
+// reference's loops, unrolled per type, made llvmpipe take minutes to compile this shader.
+uniform int uLightCount;  // lights in the light texture
+uniform int uExactLimit;
+
+void exactIfAtMax() {
+  if (!atMax || uErrorMode != 1 || uLightCount > uExactLimit || uLightCount + 8 > iterationsLeft)
+    return;
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < uLightCount; ++i) {
+    int type = i < uPointStart ? 0 : (i < uSpotStart ? 1 : 2);
+    sum += unitTerm(type, i) * texelFetch(uLights, kTexelsPerLight * i + 2).rgb;
+  }
+  estimateSum = sum;
+  cutSize = uLightCount;
+  atMax = false;
+}
+#endif
+
 #ifdef TILE_CUTS
 // The cut this pixel shares with its group, found on the CPU with bounds that hold at every
 // pixel of the group (cuts/tile_cuts.h documents it and the texels): sums its
@@ -490,6 +455,7 @@ void main() {
     }
   }
 #endif
+  exactIfAtMax();
 #endif
   oRadiance = vec4(estimateSum, 0.0);
   int kind = tookTileCut ? (atMax ? kCutStatsSharedCutAtMax : kCutStatsSharedCut)

@@ -105,6 +105,8 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     glUniform1f(shader.uniform("uError"), settings.error);
     glUniform1i(shader.uniform("uErrorMode"), settings.mode == ErrorMode::Total ? 1 : 0);
     glUniform1i(shader.uniform("uMaxCut"), maxCut);
+    glUniform1i(shader.uniform("uLightCount"), scene.lightCount());
+    glUniform1i(shader.uniform("uExactLimit"), settings.exactLimit);
     glUniform1f(shader.uniform("uInfluence"), 1.0f / std::sqrt(std::max(settings.error, 1e-6f)));
     if (tileCuts) {
       glActiveTexture(GL_TEXTURE6);

@@ -19,6 +19,11 @@ namespace manylight {
 
 enum class ErrorMode { Node, Total };
 
+// Under the total rule, a pixel whose cut reaches the maximum sums every light exactly
+// instead, where the scene has at most this many (and they fit the shader's loop budget;
+// glsl/lighting_lightcuts.frag, exactIfAtMax).
+inline constexpr int kExactLimit = 32768;
+
 struct LightcutsSettings {
   float error = 0.02f;  // ε
   ErrorMode mode = ErrorMode::Node;
@@ -31,6 +36,9 @@ struct LightcutsSettings {
   // (cuts/cell_cuts.h) instead of per square of the screen, found again only where the
   // camera shows new places. For the frames of one scene whose lights and geometry stay put.
   bool keepCuts = false;
+  // Under the total rule, a pixel whose cut reaches the maximum sums every light exactly
+  // instead where the scene has at most this many (kExactLimit).
+  int exactLimit = kExactLimit;
   TreeOptions trees;  // how the trees are built and packed (used when they are built)
 };
 

@@ -238,7 +238,7 @@ TEST(CliOptions, PixelsAtTheMaximumCutAreCountedAndMasked) {
   const std::string stats = (testFolder() / "total.json").string();
   const ProcessResult r =
       manylight("render " + scene + " -o " + out + " --size 64x48 --method lightcuts " +
-                "--error-mode total --max-cut 16 --max-cut-mask " + mask + " --stats " + stats);
+                "--cut-tile 1 --max-cut 16 --max-cut-mask " + mask + " --stats " + stats);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json s = nlohmann::json::parse(readFile(stats));
   const long long atMax = s["pixels_at_max_cut"].get<long long>();

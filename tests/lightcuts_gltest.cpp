@@ -412,6 +412,30 @@ TEST(LightcutsSharedCuts, FullCutsAreTakenAndCountedAtTheMaximum) {
   EXPECT_LE(s.worst, w.worst);
 }
 
+// Under the total rule a pixel whose cut reaches the maximum sums every light where the scene
+// has at most LightcutsSettings::exactLimit (glsl/lighting_lightcuts.frag, exactIfAtMax):
+// with walks of at most 16 nodes, no pixel is left at the maximum, and each is within ε.
+TEST(LightcutsTotalRule, PixelsAtTheMaximumSumEveryLight) {
+  constexpr double kEpsilon = 0.02;
+  const Scene scene = litRoom(false, LightLayout::Mixed, 4096);
+  const Image reference = renderScene(scene, sizedRequest()).image;
+  for (const int tile : {1, 16}) {
+    RenderRequest request = totalRuleRequest(kEpsilon);
+    request.lightcuts.maxCut = 16;
+    request.lightcuts.tileSize = tile;
+    request.lightcuts.exactLimit = 0;
+    const long long capped = renderScene(scene, request).frame.cuts.pixelsAtMaxCut;
+    request.lightcuts.exactLimit = kExactLimit;
+    const RenderOutcome out = renderScene(scene, request);
+    const CutStats& cuts = out.frame.cuts;
+    const Errors e = compareImages(out.image, reference, cuts, kEpsilon);
+    EXPECT_GT(capped, tile == 1 ? cuts.pixels / 10 : 0) << "tile " << tile;
+    EXPECT_EQ(cuts.pixelsAtMaxCut, 0) << "tile " << tile;
+    EXPECT_EQ(e.compared, cuts.pixels) << "tile " << tile;
+    EXPECT_EQ(e.failing, 0) << "tile " << tile;
+  }
+}
+
 // Moved lights (Renderer::moveLights: the trees refitted in place, the cuts found anew) keep
 // the total rule's guarantee against the reference of the moved lights.
 TEST(LightcutsMoving, RefittedTreesHoldTheTotalRule) {
