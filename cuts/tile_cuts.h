@@ -90,8 +90,9 @@ static_assert(kSharedCutLimit < (1 << 15),
 // ε = 0.05 and 0.1 (640×480), past llvmpipe's texture buffers (2^27 texels), and the frame
 // failed. Measured on 65,536 mixed lights at 640×480: the node rule's cuts take 1.1
 // (ε = 0.02) and 4.5 (ε = 0.005) texels a pixel, the total rule's full cuts 32 (ε = 0.02),
-// none dropped at this budget's 218 a pixel (68 groups at 64 a pixel, whose walks made the
-// frame 3.5 s instead of 3.0 s). At 1920×1080 the share is 32 texels a pixel.
+// of which 2 groups are dropped at 128 or 192 texels a pixel (this budget gives 218) and 68
+// at 64, whose walks made the frame 3.5 s instead of 3.0 s. At 1920×1080 the share is 32
+// texels a pixel.
 inline constexpr std::size_t kCutTexelBudget = std::size_t(1) << 26;
 
 // What the rule asks of a cut (see LightcutsSettings).
