@@ -161,6 +161,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     }
     stats["pixels_shared_cut"] = c.pixelsSharedCut;
     stats["shared_cuts"] = c.sharedCuts;
+    stats["exact_cuts"] = c.exactCuts;
     stats["per_pixel_groups"] = c.perPixelGroups;
     stats["surface_splits"] = c.surfaceSplits;
     stats["light_evaluations_per_pixel"] = c.lightEvaluations;

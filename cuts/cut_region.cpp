@@ -112,9 +112,14 @@ bool TileCutter::refine(Cut& cut) const {
       const float want = cut.target(cut.margin(), cut.errorSum);
       const float have = rule.total ? maxOf(cut.errorSum) : top;
       cut.result.shortfall = want > 0.0f ? have / want : std::numeric_limits<float>::infinity();
-      if (rule.total && rule.shareFull && !cut.wantSeed && cut.sharedFull(top)) {
-        cut.result.full = true;
-        break;
+      if (rule.total && rule.shareFull && cut.sharedFull(top)) {
+        if (!cut.wantSeed) {
+          cut.result.full = true;
+          break;
+        }
+        // A seed this far off: its quarters would fill up too (cut_frame.cpp's cutSquare
+        // gives its pixels an exact cut at once where it may).
+        cut.result.exact = rule.exactFull;
       }
       cut.result.perPixel = true;  // the tile's cut is full: its pixels cut for themselves
       if (!cut.wantSeed) return false;

@@ -78,6 +78,10 @@ namespace manylight {
 // frame of 65,536 mixed lights took 5,337 cuts, whose finding took 1.4 s of its 1.6 s; at
 // 8,000 it takes 1,093 cuts and 0.7–0.9 s (docs/performance.md).
 inline constexpr int kSharedCutLimit = 8000;
+// llvmpipe ends every loop of a shader invocation once all its loops together have run 65,535
+// iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), silently: glsl/lighting_lightcuts.frag
+// counts its iterations against this budget.
+inline constexpr int kIterationBudget = 65000;
 static_assert(kSharedCutLimit < (1 << 15),
               "the far field's and the left-out entries' counts have 15 bits each (TileCuts)");
 
@@ -106,6 +110,10 @@ struct CutRule {
   // the frame's squares.
   bool shareFull = true;
   int ownCut = 2000;
+  // Under the total rule, such a full cut is replaced by an exact one (RegionCut::exact):
+  // no entries, and its pixels sum every light. Set by the renderer where the scene has at
+  // most LightcutsSettings::exactLimit lights, which the shader sums in one loop.
+  bool exactFull = false;
   // TileCutter::cut: the most entry texels a square's cuts take per pixel that shares them
   // (kCutTexelBudget over the frame's pixels, set by the renderer; unbounded here).
   std::size_t texelsPerPixel = std::size_t(1) << 32;
@@ -121,7 +129,8 @@ struct CutRule {
 //                 lobes (bit 15, kLobesBit), how many entries were left out because they
 //                 give nothing at any pixel of the group (bits 16–30: a spot whose cone
 //                 turns away from all of it, a light behind every normal or out of range of
-//                 the nearest pixel), and whether the cut is full (bit 31, kFullCutBit)
+//                 the nearest pixel), and whether the cut is full (bit 31, kFullCutBit); a
+//                 full cut without entries is exact (RegionCut::exact)
 //   from texel 2·cuts: a cut with lobes first has two texels, its U or B per unit specular
 //     colour (the Phong lobe's bounds, below) and its far field's specular radiance per unit
 //     specular colour S (constant over the group); then its far field (cuts/far_field.h:
@@ -141,6 +150,7 @@ struct TileCuts {
   std::vector<std::uint32_t> texels;      // 4 words each
   long long boundEvaluations = 0;         // on the CPU, all groups together
   int sharedCuts = 0;                     // groups with a shared cut
+  int exactCuts = 0;                      // of them, exact ones (RegionCut::exact)
   int perPixelGroups = 0;                 // covered groups left to per-pixel cuts
   int surfaceSplits = 0;                  // groups split in two by their normals
   // Cuts found on the CPU for this frame (shared, or left to per-pixel cuts), and cuts kept
@@ -174,6 +184,10 @@ struct RegionCut {
   // at the maximum: their own walks, of at most --max-cut (≤ kSharedCutLimit) nodes, would
   // reach theirs too.
   bool full = false;
+  // A full cut made exact (CutRule::exactFull): written as a full cut without entries, whose
+  // pixels sum every light instead (glsl/lighting_lightcuts.frag, exactIfAtMax). On a seed's
+  // cut (not written): it was as far off as a shared full cut, so its square is made exact.
+  bool exact = false;
   long long bounds = 0;    // node bounds evaluated
   float shortfall = 0.0f;  // a full cut: how far its measure was above the rule's target
 
@@ -298,6 +312,8 @@ struct CutWorkspace {
 
 class TileCutter {
  public:
+  // The lights of the trees.
+  int lights() const { return leaves_[0] + leaves_[1] + leaves_[2]; }
   // Keeps `packed`, the trees of `lights`, and decodes its nodes as cuts first reach them.
   TileCutter(PackedTrees packed, const std::vector<Light>& lights);
 

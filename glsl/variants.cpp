@@ -125,6 +125,7 @@ std::string layoutPrelude() {
   out += constLine("int", "kCutStatsSharedCut", std::to_string(kCutStatsSharedCut));
   out += constLine("int", "kCutStatsSharedCutAtMax", std::to_string(kCutStatsSharedCutAtMax));
   out += constLine("uint", "kFullCutBit", std::to_string(kFullCutBit) + "u");
+  out += constLine("int", "kIterationBudget", std::to_string(kIterationBudget));
   out += constLine("int", "kMaxOctreeLevels", std::to_string(layout::kMaxOctreeLevels));
   out += constLine("uint", "kOctreeLeafBit", std::to_string(layout::kOctreeLeafBit) + "u");
   out += constLine("int", "kOctreeEntriesPerPass", std::to_string(layout::kOctreeEntriesPerPass));

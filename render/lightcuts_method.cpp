@@ -61,6 +61,10 @@ LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& l
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+bool exactSums(const LightcutsSettings& settings, int lights) {
+  return settings.mode == ErrorMode::Total && lights <= std::min(settings.exactLimit, kExactLimit);
+}
+
 const gl::Program& LightcutsMethod::program(const std::vector<std::string>& defines) const {
   return gl::cachedProgram("fullscreen.vert", "lighting_lightcuts.frag", defines,
                            {"oRadiance", "oCutStats"});
@@ -75,8 +79,9 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
       (scene.hasSpecular() ? glsl::kLightcutsHasSpecular : 0u) |
       (colour.coding() == NodeColourCoding::Fitted ? glsl::kLightcutsFittedColour : 0u);
   const int tileSize = distance_ ? 1 : std::max(settings.tileSize, 1);
+  const bool exact = exactSums(settings, scene.lightCount());
   if (tileSize > 1) {
-    cutTiles(gbuffer, view, scene.hasSpecular(), settings, tileSize);
+    cutTiles(gbuffer, view, scene.hasSpecular(), settings, tileSize, exact, scene.lightCount());
   } else {
     tileInfo_ = {};
     cutMs_ = 0.0;
@@ -106,7 +111,7 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     glUniform1i(shader.uniform("uErrorMode"), settings.mode == ErrorMode::Total ? 1 : 0);
     glUniform1i(shader.uniform("uMaxCut"), maxCut);
     glUniform1i(shader.uniform("uLightCount"), scene.lightCount());
-    glUniform1i(shader.uniform("uExactLimit"), settings.exactLimit);
+    glUniform1i(shader.uniform("uExactSums"), exact ? 1 : 0);
     glUniform1f(shader.uniform("uInfluence"), 1.0f / std::sqrt(std::max(settings.error, 1e-6f)));
     if (tileCuts) {
       glActiveTexture(GL_TEXTURE6);
@@ -138,7 +143,8 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
 }
 
 void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const View& view, bool specular,
-                               const LightcutsSettings& settings, int tileSize) const {
+                               const LightcutsSettings& settings, int tileSize, bool exact,
+                               int lights) const {
   const std::size_t plane = std::size_t(width_) * height_ * 4;
   // With specular materials the albedo too: specular pixels share cuts bounded over their
   // lobes, weighed by it (cuts/pixel_groups.h).
@@ -167,6 +173,9 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const View& view, bool sp
   // (kSharedCutLimit says why).
   CutRule rule{settings.error, settings.mode == ErrorMode::Total, kSharedCutLimit};
   rule.ownCut = settings.maxCut;
+  rule.exactFull = exact;
+  if (exact && lights > kSharedCutLimit)
+    rule.maxCut = std::min(kSharedCutLimit, lights / kExactCutShare);
   // Every pixel may share a cut of its own (2 header texels) and its share of the entries.
   const std::size_t pixelCount = std::max<std::size_t>(std::size_t(width_) * height_, 1);
   const std::size_t perPixel = std::min(kCutTexelBudget, gl::maxTextureBufferTexels()) / pixelCount;
@@ -201,6 +210,7 @@ CutStats LightcutsMethod::cutStats() const {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   CutStats stats;
   stats.sharedCuts = tileInfo_.sharedCuts;
+  stats.exactCuts = tileInfo_.exactCuts;
   stats.perPixelGroups = tileInfo_.perPixelGroups;
   stats.surfaceSplits = tileInfo_.surfaceSplits;
   double cut = 0.0, lightEvals = 0.0, nodeEvals = 0.0;

@@ -19,14 +19,30 @@ namespace manylight {
 
 enum class ErrorMode { Node, Total };
 
-// Under the total rule, a pixel whose cut reaches the maximum sums every light exactly
-// instead, where the scene has at most this many (glsl/lighting_lightcuts.frag,
-// exactIfAtMax): no more evaluations than a shared cut's most entries. A cut shared by a
-// group can then always hold every leaf, so only pixels walking their own cuts (--max-cut)
-// reach the maximum. At 32,768, the pixels on full shared cuts at 16,384 lights summed every
-// light after their cut: exact, but the total rule's frame (uniform lights, 640×480,
-// ε = 0.02) took 14.0 s instead of 4.1 s, against the reference's 3.7 s.
-inline constexpr int kExactLimit = kSharedCutLimit;
+// Under the total rule, where the scene has at most this many lights, a pixel whose cut cannot
+// meet the rule sums every light instead (glsl/lighting_lightcuts.frag, exactIfAtMax): a group
+// whose shared cut would fill up gets an exact cut (cuts/tile_cuts.h, RegionCut::exact), a
+// pixel whose shared cut fails its check sums them at once rather than walking a cut of its
+// own, and a walk that reaches the maximum sums them after it. So no pixel is left at the
+// maximum, and a frame costs at most about twice the reference's. Measured at 16,384 lights,
+// 320×240, ε = 0.02 (0.005 clustered): pixels at the maximum far 36,379 → 0, on-surfaces
+// 48,458 → 0, clustered 56,232 → 0; frames 7.98 → 1.2 s, 4.5 → 1.6 s, 4.3 → 1.1 s (the
+// reference 0.82 s). At 640×480, ε = 0.02, 16,384 uniform lights: 4.0 s, every pixel at the
+// maximum before; the reference 3.3 s. Above the limit such pixels keep the estimate of the
+// cut they reached (--stats pixels_at_max_cut): an exact sum costs as much as the reference's
+// pixel, which grows with the lights.
+inline constexpr int kExactLimit = 32768;
+// Where pixels may sum every light and a shared cut cannot hold every leaf (more than
+// kSharedCutLimit lights), a shared cut holds at most this share of them: a cut
+// that fills up takes its pixels more time than their exact sums would (about as long as
+// N / kExactCutShare lights), and the CPU gives up on it sooner. Measured at 16,384 far
+// lights (320×240, ε = 0.02): frame 4.0 s with cuts of up to 8,000 entries (the CPU's
+// 3.1 s), 1.0 s with 4,096 (0.05 s); the reference 0.8 s.
+inline constexpr int kExactCutShare = 4;
+// A pixel sums its shared cut (an iteration per entry at most, and 6) and then every light
+// (one each, 8 to spare) within the shader's loop budget.
+static_assert(kExactLimit + kSharedCutLimit + 14 <= kIterationBudget,
+              "exact sums must fit the shader's loops (glsl/lighting_lightcuts.frag)");
 
 struct LightcutsSettings {
   float error = 0.02f;  // ε
@@ -40,11 +56,14 @@ struct LightcutsSettings {
   // (cuts/cell_cuts.h) instead of per square of the screen, found again only where the
   // camera shows new places. For the frames of one scene whose lights and geometry stay put.
   bool keepCuts = false;
-  // Under the total rule, a pixel whose cut reaches the maximum sums every light exactly
-  // instead where the scene has at most this many (kExactLimit).
+  // Under the total rule, pixels whose cuts cannot meet it sum every light instead where the
+  // scene has at most this many lights (and kExactLimit); 0: never.
   int exactLimit = kExactLimit;
   TreeOptions trees;  // how the trees are built and packed (used when they are built)
 };
+
+// Whether a frame's pixels may sum every light (kExactLimit).
+bool exactSums(const LightcutsSettings& settings, int lights);
 
 // llvmpipe ends a shader invocation's loops after 65,535 iterations in all, and a pass
 // over the trees takes up to 2 iterations per cut node: this limit leaves room for several
@@ -61,6 +80,7 @@ struct CutStats {
   // Groups of pixels with a shared cut, groups left per pixel, and groups split into their
   // surfaces (cuts/tile_cuts.h).
   int sharedCuts = 0, perPixelGroups = 0, surfaceSplits = 0;
+  int exactCuts = 0;  // of the shared cuts, exact ones (cuts/tile_cuts.h, RegionCut::exact)
   double lightEvaluations = 0.0;       // per pixel
   double nodeEvaluations = 0.0;        // per pixel (error bounds or distance tests), with the
                                        // tile cuts' bounds on the CPU spread over the pixels
@@ -98,7 +118,7 @@ class LightcutsMethod {
 
   // Finds the cuts of tileSize × tileSize squares on the CPU, from the G-buffer read back.
   void cutTiles(const GBuffer& gbuffer, const View& view, bool specular,
-                const LightcutsSettings& settings, int tileSize) const;
+                const LightcutsSettings& settings, int tileSize, bool exact, int lights) const;
 
   PackedTrees layout_;  // bases, leaf counts, colour coding (no words: the tile cutter's)
   gl::TextureBuffer nodes_;

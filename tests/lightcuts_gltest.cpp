@@ -436,6 +436,28 @@ TEST(LightcutsTotalRule, PixelsAtTheMaximumSumEveryLight) {
   }
 }
 
+// Past kSharedCutLimit lights (16,384 far away: every node's bound is much the same) groups
+// whose cuts fill up get exact cuts (cuts/tile_cuts.h, RegionCut::exact), whose pixels sum
+// every light: none is left at the maximum, and each is within ε. Without, most are.
+TEST(LightcutsTotalRule, GroupsWhoseCutsFillUpSumEveryLight) {
+  constexpr double kEpsilon = 0.02;
+  const Scene scene = litRoom(false, LightLayout::Far, 16384);
+  const Image reference = renderScene(scene, sizedRequest()).image;
+  RenderRequest request = totalRuleRequest(kEpsilon);
+  request.lightcuts.exactLimit = 0;
+  const CutStats capped = renderScene(scene, request).frame.cuts;
+  request.lightcuts.exactLimit = kExactLimit;
+  const RenderOutcome out = renderScene(scene, request);
+  const CutStats& cuts = out.frame.cuts;
+  const Errors e = compareImages(out.image, reference, cuts, kEpsilon);
+  EXPECT_GT(capped.pixelsAtMaxCut, capped.pixels / 2);
+  EXPECT_EQ(capped.exactCuts, 0);
+  EXPECT_GT(cuts.exactCuts, 0);
+  EXPECT_EQ(cuts.pixelsAtMaxCut, 0);
+  EXPECT_EQ(e.compared, cuts.pixels);
+  EXPECT_EQ(e.failing, 0);
+}
+
 // Moved lights (Renderer::moveLights: the trees refitted in place, the cuts found anew) keep
 // the total rule's guarantee against the reference of the moved lights.
 TEST(LightcutsMoving, RefittedTreesHoldTheTotalRule) {
