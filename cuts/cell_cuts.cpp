@@ -360,6 +360,7 @@ void CellCuts::frameCuts(const GBufferPixels& px, const CutRule& rule, int threa
     out.cutOfPixel[i] = std::uint32_t(frameCells_.size()) + squares.cutOfPixel[i];
   }
   out.sharedCuts = int(cuts);
+  out.exactCuts = squares.exactCuts;
   out.perPixelGroups = squares.perPixelGroups;
   out.surfaceSplits = squares.surfaceSplits;
   out.boundEvaluations += squares.boundEvaluations;

@@ -22,13 +22,13 @@ constexpr float kWalkShortfall = 16.0f;
 // (the probes stop at the first that does not): a pixel's walk costs about kWalkCost light
 // evaluations per node of its cut (several passes, a node's bounds against a light's shading,
 // loops that differ from pixel to pixel), and one that reaches the maximum sums every light
-// after it. Measured at 16,384 lights (320×240, total rule), frames with no walks and with
-// walks wherever all five probes met the rule: on-surfaces (ε = 0.02) 1.49 and 1.59 s;
-// clustered (ε = 0.005) 1.08 and 1.33 s; lights at one point (ε = 0.02) 1.03 and 0.20 s; the
-// reference 0.8 s. At 640×480, clustered at ε = 0.02 walked cuts of 1,332 nodes on average
-// where all five met the rule: 6.4 s of the shader's time, about 24 light evaluations a node,
-// against the reference's 3.2 s. With kWalkCost = 24 the three frames take 1.55, 1.08 and
-// 0.19 s.
+// after it where the shader's loop budget has room for them. Measured at 16,384 lights (320×240,
+// total rule), frames with no walks and with walks wherever all five probes met the rule:
+// on-surfaces (ε = 0.02) 1.49 and 1.59 s; clustered (ε = 0.005) 1.08 and 1.33 s; lights at one
+// point (ε = 0.02) 1.03 and 0.20 s; the reference 0.8 s. At 640×480, clustered at ε = 0.02 walked
+// cuts of 1,332 nodes on average where all five met the rule: 6.4 s of the shader's time, about 24
+// light evaluations a node, against the reference's 3.2 s. With kWalkCost = 24 the three frames
+// take 1.55, 1.08 and 0.19 s.
 constexpr int kWalkCost = 24;
 
 // One thread's cuts (numbered in order; cutOfPixel holds these numbers until the merge) and

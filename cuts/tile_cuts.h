@@ -112,7 +112,7 @@ struct CutRule {
   int ownCut = 2000;
   // Under the total rule, such a full cut is replaced by an exact one (RegionCut::exact):
   // no entries, and its pixels sum every light. Set by the renderer where the scene has at
-  // most LightcutsSettings::exactLimit lights, which the shader sums in one loop.
+  // most LightcutsSettings::exactLimit lights, which the shader sums within its loop budget.
   bool exactFull = false;
   // TileCutter::cut: the most entry texels a square's cuts take per pixel that shares them
   // (kCutTexelBudget over the frame's pixels, set by the renderer; unbounded here).
@@ -186,7 +186,8 @@ struct RegionCut {
   bool full = false;
   // A full cut made exact (CutRule::exactFull): written as a full cut without entries, whose
   // pixels sum every light instead (glsl/lighting_lightcuts.frag, exactIfAtMax). On a seed's
-  // cut (not written): it was as far off as a shared full cut, so its square is made exact.
+  // cut (not written): it was as far off as a shared full cut, so a square without a seed
+  // whose probes cannot walk is made exact (cut_frame.cpp, cutSquare).
   bool exact = false;
   long long bounds = 0;    // node bounds evaluated
   float shortfall = 0.0f;  // a full cut: how far its measure was above the rule's target

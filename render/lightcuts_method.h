@@ -23,10 +23,13 @@ enum class ErrorMode { Node, Total };
 // meet the rule sums every light instead (glsl/lighting_lightcuts.frag, exactIfAtMax): a group
 // whose shared cut would fill up gets an exact cut (cuts/tile_cuts.h, RegionCut::exact), a
 // pixel whose shared cut fails its check sums them at once rather than walking a cut of its
-// own, and a walk that reaches the maximum sums them after it. So no pixel is left at the
-// maximum, and a frame costs at most about twice the reference's. Measured at 16,384 lights,
-// 320×240, ε = 0.02 (0.005 clustered): pixels at the maximum far 36,379 → 0, on-surfaces
-// 48,458 → 0, clustered 56,232 → 0; frames 7.98 → 1.2 s, 4.5 → 1.6 s, 4.3 → 1.1 s (the
+// own, and a walk that reaches the maximum sums them after it where the loop budget still has
+// room for every light (kIterationBudget: a walk of several passes of thousands of nodes near
+// 32,768 lights may not, and stays counted at the maximum). So with shared cuts no pixel was
+// left at the maximum in any case measured, and a frame costs at most about twice the
+// reference's. Measured in the stability suite (docs/stability.md; 16,384 lights, 320×240,
+// ε = 0.02, 0.005 clustered): pixels at the maximum far 36,379 → 0, on-surfaces 48,458 → 0,
+// clustered 56,232 → 0; frames 7.98 → 1.1 s, 4.5 → 1.7 s, 4.3 → 1.1 s (the
 // reference 0.82 s). At 640×480, ε = 0.02, 16,384 uniform lights: 4.0 s, every pixel at the
 // maximum before; the reference 3.3 s. Above the limit such pixels keep the estimate of the
 // cut they reached (--stats pixels_at_max_cut): an exact sum costs as much as the reference's
