@@ -28,10 +28,15 @@ struct NodeLanes {
   float invRange2[kLanes], w2[kLanes], sinTheta[kLanes];
   float repPoint[3][kLanes], repAxis[3][kLanes], repInvRange2[kLanes], repCos[kLanes];
   float leaf[kLanes];  // 1 for a leaf
+  // Spot nodes (TileCutter::SpotCone): the cosine of their axes' spread about `axis`, the
+  // smoothstep terms (scale, offset) of the widest and of the narrowest cone, the smallest
+  // range's 1/range², and the representative's cone terms.
+  float spreadCos[kLanes], upScale[kLanes], upOffset[kLanes], lowScale[kLanes];
+  float lowOffset[kLanes], lowInvRange2[kLanes], repConeScale[kLanes], repConeOffset[kLanes];
   float tree[kLanes];
   float knownUnit[kLanes], unit[kLanes];  // 1: `unit` holds it
 };
-inline constexpr int kNodeRows = 24;
+inline constexpr int kNodeRows = 32;
 
 // Rows [0, kNodeRows) of `out`'s lanes [0, count) from the first kNodeRows floats at each of
 // `nodes` (32-byte aligned; 1 ≤ count ≤ kLanes); lanes past `count` take lane 0's. Eight at once, a

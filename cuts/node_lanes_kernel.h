@@ -5,8 +5,10 @@
 // bits of floats: vexponent (a normal float's unbiased exponent, as a float), vmantissa (its
 // mantissa with exponent 0, in [1, 2)) and vexp2Integer (2^k for integral k in [−126, 127]). The
 // bounds are those glsl/lighting_lightcuts.frag's nodeBounds puts on a node at one point, over a
-// region of shading points instead (a box of positions, a cone of normals). Every branch is
-// taken by every lane and its results selected, so eight lanes and one give the same bits.
+// region of shading points instead (a box of positions, a cone of normals), and for spot nodes
+// tighter: their cone factor bounded above and below (spotConeLanes), where the shader's walk
+// takes 1 or 0 and a lower bound of 0. Every branch is taken by every lane and its results
+// selected, so eight lanes and one give the same bits.
 // No include guard: included once per lane type.
 
 // libstdc++'s std::clamp: (v < lo) ? lo : (hi < v) ? hi : v.
@@ -96,8 +98,9 @@ MANYLIGHT_INLINE inline V widenDown(V c, const ShadingRegion& g) {
 
 constexpr float kMinDistanceSquared = 1e-12f;  // glsl/shading.glsl
 
-// The representative's shading at the region's centre per unit albedo and intensity, unless
-// its parent's is known (NodeLanes::knownUnit), for lanes [l, l + width of V).
+// The representative's shading at the region's centre per unit albedo and intensity (a
+// spot's with its cone factor, as the shader sums it), unless its parent's is known
+// (NodeLanes::knownUnit), for lanes [l, l + width of V).
 MANYLIGHT_INLINE inline V unitLanes(const RegionTerms& r, const NodeLanes& in, int l,
                                     Mask directional, Mask spot) {
   constexpr float kPi = 3.14159265358979323846f;
@@ -117,7 +120,9 @@ MANYLIGHT_INLINE inline V unitLanes(const RegionTerms& r, const NodeLanes& in, i
   V atPoint = vmax(g.axis.x * dir[0] + g.axis.y * dir[1] + g.axis.z * dir[2], zero) *
               windowLanes(d2Rep, load(in.repInvRange2 + l)) / d2Rep;
   const V coneCos = repAxis[0] * -dir[0] + repAxis[1] * -dir[1] + repAxis[2] * -dir[2];
-  atPoint = spot && coneCos < load(in.repCos + l) ? zero : atPoint;
+  const V t =
+      clampLanes(coneCos * load(in.repConeScale + l) + load(in.repConeOffset + l), 0.0f, 1.0f);
+  atPoint = spot ? atPoint * (t * t * (3.0f - 2.0f * t)) : atPoint;
   const V fresh = (directional ? towards : atPoint) / kPi;
   return load(in.knownUnit + l) != 0.0f ? load(in.unit + l) : fresh;
 }
@@ -146,32 +151,7 @@ MANYLIGHT_INLINE inline V cosUpLanes(const ShadingRegion& g, const V dMin[3], co
   return cosUp;
 }
 
-// Whether some light of a spot node may shine on some point of the region: its cone (axis,
-// cos θ in w2, sin θ) widened by the angular radius of the node's and the region's bounding
-// spheres together.
-MANYLIGHT_INLINE inline Mask spotReachesLanes(const RegionTerms& r, const NodeLanes& in, int l) {
-  const V zero = splat(0.0f);
-  V boxCentre[3], boxExtent[3], toP[3];
-  for (int c = 0; c < 3; ++c) {
-    const V bMin = load(in.boxMin[c] + l), bMax = load(in.boxMax[c] + l);
-    boxCentre[c] = 0.5f * (bMin + bMax);
-    boxExtent[c] = bMax - bMin;
-    toP[c] = r.centre[c] - boxCentre[c];
-  }
-  const V reach = 0.5f * vsqrt(boxExtent[0] * boxExtent[0] + boxExtent[1] * boxExtent[1] +
-                               boxExtent[2] * boxExtent[2]) +
-                  r.halfDiagonal;
-  const V d = vsqrt(toP[0] * toP[0] + toP[1] * toP[1] + toP[2] * toP[2]);
-  const V spotCos = load(in.w2 + l), spotSin = load(in.sinTheta + l);
-  const V sinR = reach / d;
-  const V cosR = vsqrt(vmax(1.0f - sinR * sinR, zero));
-  const V sinSum = spotSin * cosR + spotCos * sinR;
-  const V cosSum = spotCos * cosR - spotSin * sinR;
-  V axis[3];
-  for (int c = 0; c < 3; ++c) axis[c] = load(in.axis[c] + l);
-  return d <= reach || sinSum < 0.0f ||
-         (axis[0] * toP[0] + axis[1] * toP[1] + axis[2] * toP[2]) / d >= cosSum;
-}
+#include "cuts/lane_cones.h"
 
 // The vectors from the region to a node (nodeBoundLanes): their box and nearest distance.
 struct NodeVectors {
@@ -246,13 +226,17 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   const V cosUp = cosUpLanes(g, dMin, dMax, dist, sphere);
   const auto lit = cosUp > 0.0f && (!spot || spotReachesLanes(r, in, l));
 
-  // The node's upper (and under the total rule lower) bound per unit albedo.
+  // The node's upper (and under the total rule lower) bound per unit albedo; a spot's times
+  // its cone factor's bounds.
   const V invRange2 = load(in.invRange2 + l), w2 = load(in.w2 + l);
-  const V gUp =
+  const ConeFactor cone = spotConeLanes(r, in, l);
+  V gUp =
       directional ? one : windowLanes(d2Min, invRange2) / vmax(d2Min, splat(kMinDistanceSquared));
+  gUp = spot ? gUp * cone.up : gUp;
   const V gLow = directional ? one
-                 : spot      ? zero
-                             : windowLanes(d2Max, w2) / vmax(d2Max, splat(kMinDistanceSquared));
+                 : spot      ? cone.low * windowLanes(d2Max, load(in.lowInvRange2 + l)) /
+                              vmax(d2Max, splat(kMinDistanceSquared))
+                        : windowLanes(d2Max, w2) / vmax(d2Max, splat(kMinDistanceSquared));
   const V slack = r.slackRate * maxOfLanes(intensity) + r.slackFloor;
   const V upperScale = cosUp * gUp / kPi;
   V upper[3], lower[3] = {zero, zero, zero};

@@ -355,10 +355,23 @@ class TileCutter {
     glm::vec3 repPoint, repAxis;
     float repInvRange2, repCos;
     float leafRow;  // 1 for a leaf, else 0
-    int representative;
+    // A spot node's cones (SpotCone; others: 1 and 0s), then the representative's.
+    float spreadCos, upScale, upOffset, lowScale, lowOffset, lowInvRange2;
     float repConeScale, repConeOffset;
+    int representative;
     bool leaf() const { return leafRow != 0.0f; }
   };
+  // What a spot node's bounds take of its lights' cones, found from the lights by the
+  // constructor (the node texture holds only the cone Θ around the axis that holds them all):
+  // the spread of their axes about the node's axis (cos), and the smoothstep terms of the widest
+  // cone (the smallest cosines of the outer and inner angles: a cone factor at least each
+  // light's at any angle) and of the narrowest (at most each light's), and the largest 1/range².
+  struct SpotCone {
+    float spreadCos = -1.0f;
+    float upScale = 0.0f, upOffset = 1.0f, lowScale = 0.0f, lowOffset = 0.0f;
+    float lowInvRange2 = 0.0f;
+  };
+  void findSpotCones();
   // Node i of `tree`, decoded with its block on first use (by whichever thread gets there
   // first; the others wait for it). A cut reaches a small share of a large forest's nodes,
   // so most are never decoded: their memory is never touched.
@@ -387,6 +400,7 @@ class TileCutter {
   PackedTrees packed_;                // what nodes are decoded from
   std::vector<int> leafOfSlot_;       // per light texture slot, its leaf (in its type's tree)
   std::vector<SpotConeTerms> cones_;  // per spot slot, from spotStart_
+  std::vector<SpotCone> spotCones_;   // per node of the spot tree
   int spotStart_ = 0;
   mutable std::unique_ptr<Node[]> nodes_[3];  // per tree, 2 · leaves_ − 1 (none without leaves)
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> state_[3];  // per block of nodes_

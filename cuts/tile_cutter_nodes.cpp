@@ -1,9 +1,11 @@
 // TileCutter's nodes (cuts/tile_cuts.h): the packed trees decoded block by block as cuts
 // reach them, each node with its representative's light beside it.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <thread>
 #include <type_traits>
+#include <vector>
 
 #include "bake/light_tree_layout.h"
 #include "cuts/node_lanes.h"
@@ -46,6 +48,66 @@ TileCutter::TileCutter(PackedTrees packed, const std::vector<Light>& lights)
       if (slot >= 0 && std::size_t(slot) < leafOfSlot_.size()) leafOfSlot_[std::size_t(slot)] = i;
     }
   }
+  findSpotCones();
+}
+
+void TileCutter::findSpotCones() {
+  const int count = leaves_[2] > 0 ? 2 * leaves_[2] - 1 : 0;
+  spotCones_.assign(std::size_t(count), SpotCone{});
+  // Per node, bottom-up: its axis, the spread of its lights' axes about it (an upper bound:
+  // a child's spread plus the angle between the axes), and the extreme cosines of their
+  // outer and inner angles, as the light texture's smoothstep terms give them.
+  struct Cones {
+    glm::dvec3 axis{0.0};
+    double spread = 0.0, outerLow = 1.0, innerLow = 1.0, outerHigh = -1.0, innerHigh = -1.0;
+    double invRange2 = 0.0;
+    bool empty = true;
+  };
+  constexpr double kPi = 3.14159265358979323846;
+  std::vector<Cones> c(static_cast<std::size_t>(count));
+  for (int i = count - 1; i >= 0; --i) {
+    const std::uint32_t* w = wordsOf(packed_, 2, i);
+    Cones& n = c[std::size_t(i)];
+    const glm::dvec3 axis(floatOf(w[10]), floatOf(w[11]), floatOf(w[12]));
+    n.axis = glm::length(axis) > 0.0 ? glm::normalize(axis) : glm::dvec3(0.0, -1.0, 0.0);
+    const int slot = int(w[3]);
+    if (i >= leaves_[2] - 1) {
+      if (slot < spotStart_ || std::size_t(slot - spotStart_) >= cones_.size()) continue;
+      const SpotConeTerms& cone = cones_[std::size_t(slot - spotStart_)];
+      const double outer = -double(cone.offset) / double(cone.scale);
+      const double inner = outer + 1.0 / double(cone.scale);
+      n = {n.axis, 0.0, outer, inner, outer, inner, double(floatOf(w[7])), false};
+      continue;
+    }
+    for (const int k : {2 * i + 1, 2 * i + 2}) {
+      const Cones& child = c[std::size_t(k)];
+      if (child.empty) continue;
+      const double angle = std::acos(std::clamp(glm::dot(n.axis, child.axis), -1.0, 1.0));
+      n.spread = std::max(n.spread, std::min(angle + child.spread, kPi));
+      n.outerLow = std::min(n.outerLow, child.outerLow);
+      n.innerLow = std::min(n.innerLow, child.innerLow);
+      n.outerHigh = std::max(n.outerHigh, child.outerHigh);
+      n.innerHigh = std::max(n.innerHigh, child.innerHigh);
+      n.invRange2 = std::max(n.invRange2, child.invRange2);
+      n.empty = false;
+    }
+  }
+  // The cones' terms, each widened (upper) or narrowed (lower) by 1e-6 in the cosine for
+  // the float arithmetic of the shader's smoothstep.
+  constexpr double kMargin = 1e-6;
+  for (int i = 0; i < count; ++i) {
+    const Cones& n = c[std::size_t(i)];
+    if (n.empty) continue;
+    SpotCone& s = spotCones_[std::size_t(i)];
+    s.spreadCos = float(std::cos(std::min(n.spread + kMargin, kPi)));
+    const double upScale = 1.0 / (n.innerLow - n.outerLow);
+    s.upScale = float(upScale);
+    s.upOffset = float(-(n.outerLow - kMargin) * upScale);
+    const double lowScale = 1.0 / (n.innerHigh - n.outerHigh);  // both moved by the margin
+    s.lowScale = float(lowScale);
+    s.lowOffset = float(-(n.outerHigh + kMargin) * lowScale);
+    s.lowInvRange2 = float(n.invRange2);
+  }
 }
 
 void TileCutter::decodeBlock(int tree, std::size_t block) const {
@@ -64,9 +126,11 @@ void TileCutter::decodeBlock(int tree, std::size_t block) const {
 
 TileCutter::Node TileCutter::decode(int tree, int i) const {
   // gatherNodes reads a node's first kNodeRows floats as NodeLanes' rows.
-  static_assert(offsetof(Node, leafRow) == (kNodeRows - 1) * sizeof(float) &&
+  static_assert(offsetof(Node, repConeOffset) == (kNodeRows - 1) * sizeof(float) &&
                 offsetof(Node, repPoint) == offsetof(NodeLanes, repPoint) / kLanes &&
-                offsetof(Node, leafRow) == offsetof(NodeLanes, leaf) / kLanes);
+                offsetof(Node, leafRow) == offsetof(NodeLanes, leaf) / kLanes &&
+                offsetof(Node, spreadCos) == offsetof(NodeLanes, spreadCos) / kLanes &&
+                offsetof(Node, repConeOffset) == offsetof(NodeLanes, repConeOffset) / kLanes);
   const std::uint32_t* w = wordsOf(packed_, tree, i);
   Node n;
   n.boxMin = {floatOf(w[0]), floatOf(w[1]), floatOf(w[2])};
@@ -82,6 +146,11 @@ TileCutter::Node TileCutter::decode(int tree, int i) const {
   n.sinTheta = tree == 2 ? floatOf(w[13]) : 0.0f;
   n.repPoint = n.repAxis = glm::vec3(0.0f);
   n.repInvRange2 = n.repCos = n.repConeScale = n.repConeOffset = 0.0f;
+  const SpotCone cone = tree == 2 ? spotCones_[std::size_t(i)] : SpotCone{};
+  n.spreadCos = cone.spreadCos;
+  n.upScale = cone.upScale, n.upOffset = cone.upOffset;
+  n.lowScale = cone.lowScale, n.lowOffset = cone.lowOffset;
+  n.lowInvRange2 = cone.lowInvRange2;
   if (n.representative < 0 || std::size_t(n.representative) >= leafOfSlot_.size() ||
       leafOfSlot_[std::size_t(n.representative)] < 0)
     return n;

@@ -46,6 +46,19 @@ NodeLanes randomNodes(std::mt19937& rng) {
     n.sinTheta[l] = std::sqrt(std::max(1.0f - n.w2[l] * n.w2[l], 0.0f));
     n.repInvRange2[l] = n.invRange2[l];
     n.repCos[l] = u(rng);
+    // Spots' cones: the widest's outer cosine in [−0.5, 0.5], its inner above it; the
+    // narrowest's cosines at or above them.
+    const float outer = 0.5f * u(rng), inner = outer + 0.01f + 0.4f * std::abs(u(rng));
+    const float narrowOuter = outer + 0.1f * std::abs(u(rng));
+    const float narrowInner = std::max(inner, narrowOuter + 0.01f) + 0.1f * std::abs(u(rng));
+    n.spreadCos[l] = u(rng);
+    n.upScale[l] = 1.0f / (inner - outer);
+    n.upOffset[l] = -outer * n.upScale[l];
+    n.lowScale[l] = 1.0f / (narrowInner - narrowOuter);
+    n.lowOffset[l] = -narrowOuter * n.lowScale[l];
+    n.lowInvRange2[l] = n.invRange2[l] + (rng() % 2 ? 0.1f : 0.0f);
+    n.repConeScale[l] = n.upScale[l];
+    n.repConeOffset[l] = n.upOffset[l];
     n.knownUnit[l] = rng() % 3 == 0 ? 1.0f : 0.0f;
     n.unit[l] = std::abs(u(rng));
   }
@@ -299,7 +312,9 @@ TEST(NodeLanes, EightLanesGiveOneLanesFoldBoundsBitForBit) {
         ++spotsFolded;
         EXPECT_TRUE(std::isfinite(in.coneScale[l]));  // a hard edge never folds
       }
-      if (in.tree[l] == 0.0f) EXPECT_EQ(one[l], 0.0f);  // a directional light is linear
+      if (in.tree[l] == 0.0f) {
+        EXPECT_EQ(one[l], 0.0f);  // a directional light is linear
+      }
     }
   }
   EXPECT_GT(folds, 1000);

@@ -159,14 +159,16 @@ TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
   } cases[] = {{"uniform", LightLayout::Uniform, 2000},
                {"mixed", LightLayout::Mixed, 1500},
                {"clustered", LightLayout::Clustered, 2000},
+               {"street", LightLayout::Street, 2000},  // spots whose cones' edges cross it
                {"two", LightLayout::Mixed, 2}};
   for (const auto& k : cases) {
     for (const int tile : {4, 16}) {
       const Checked c = checkTotalRule(layoutLights(k.layout, k.count, 7), 0.02f, tile);
       SCOPED_TRACE(std::string(k.name) + " tile " + std::to_string(tile));
       EXPECT_GT(c.sharedPixels, kSize * kSize / 2);  // most pixels share a cut
-      // Most shared cuts fold entries into a far field, whose error the check above covers.
-      if (k.count > 2) {
+      // Most shared cuts fold entries into a far field, whose error the check above covers
+      // (spots whose cones' edges cross the group do not fold).
+      if (k.count > 2 && k.layout != LightLayout::Street) {
         EXPECT_GT(c.farFieldPixels, c.sharedPixels / 2);
       }
       EXPECT_EQ(c.failing, 0);
