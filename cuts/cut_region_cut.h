@@ -135,7 +135,8 @@ struct TileCutter::Cut {
   // [e⁻, e⁺], the lobe (e+2)/(2π)·max(l·m, 0)^e lies within [(e⁻+2)/(2π)·cosᵣ⁻^e⁺,
   // (e⁺+2)/(2π)·cosᵣ⁺^e⁻] at every pixel (the powers bounded by BoundLanes' lobeBottom and
   // lobeTop), so the node per unit specular colour lies within
-  // I⁻·that lower·cos⁻·window⁻(d⁺)/d⁺² and I⁺·that upper·cos⁺·window(d⁻)/d⁻². The
+  // I⁻·that lower·cos⁻·window⁻(d⁺)/d⁺² and I⁺·that upper·cos⁺·window(d⁻)/d⁻² (a spot's
+  // times its cone factor's bounds: BoundLanes' lowerScale and upperScale hold them). The
   // representative's lobe at the centre, along the mirror axis with the mean exponent, lies
   // within them too: the estimate of a folded entry's lobe, off by at most their spread.
   // `same`: an item with the same representative, whose lobe at the centre is this one's.

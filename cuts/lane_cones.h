@@ -54,7 +54,9 @@ MANYLIGHT_INLINE inline ConeFactor spotConeLanes(const RegionTerms& r, const Nod
       0.5f * vsqrt(extent[0] * extent[0] + extent[1] * extent[1] + extent[2] * extent[2]) +
       r.halfDiagonal;
   const V d = vsqrt(toP[0] * toP[0] + toP[1] * toP[1] + toP[2] * toP[2]);
-  const auto inside = d <= reach;
+  // Within 1.0001 · reach the angular radius is taken as 90°: beyond it cos α ≥ 0.014, and
+  // its float error (about 1e-7 / cos α) stays within the 1e-5 added to the cosines below.
+  const auto inside = d <= reach * 1.0001f;
   const V sinA = vmin(reach / d, one), cosA = vsqrt(vmax(1.0f - sinA * sinA, zero));
   const V cosS = load(in.spreadCos + l), sinS = vsqrt(vmax(1.0f - cosS * cosS, zero));
   // β = α + σ; past π where its sine is negative.

@@ -26,6 +26,7 @@ inline constexpr int kLanes = 8;
 struct NodeLanes {
   float boxMin[3][kLanes], boxMax[3][kLanes], intensity[3][kLanes], axis[3][kLanes];
   float invRange2[kLanes], w2[kLanes], sinTheta[kLanes];
+  // repCos rides along with the rows; the bounds take the representative's cone terms below.
   float repPoint[3][kLanes], repAxis[3][kLanes], repInvRange2[kLanes], repCos[kLanes];
   float leaf[kLanes];  // 1 for a leaf
   // Spot nodes (TileCutter::SpotCone): the cosine of their axes' spread about `axis`, the
@@ -60,7 +61,8 @@ struct RegionTerms {
 // measure (−1: a leaf; +inf: unbounded), error (upper, or upper − lower), estimate and
 // whether it is dark (TileCutter::cutRegion's Item).
 // Where the region has specular lobes, also (leaves too): cos⁺ · window(d⁻)/d⁻² (0 where no
-// light of the node reaches the region) and cos⁻ · window⁻(d⁺)/d⁺² (0 for spots); with
+// light of the node reaches the region) and cos⁻ · window⁻(d⁺)/d⁺², a spot's times its cone
+// factor's upper and lower bounds (spotConeLanes in cuts/lane_cones.h); with
 // cosᵣ⁺ and cosᵣ⁻ the largest and smallest cosines between a mirror direction of the region
 // and a direction from its box into the node's, clamped to [0, 1], an upper bound on
 // cosᵣ⁺^e⁻ (0 where the first term is) and a lower bound on cosᵣ⁻^e⁺ (0 where the second is),

@@ -355,7 +355,8 @@ class TileCutter {
     glm::vec3 repPoint, repAxis;
     float repInvRange2, repCos;
     float leafRow;  // 1 for a leaf, else 0
-    // A spot node's cones (SpotCone; others: 1 and 0s), then the representative's.
+    // A spot node's cones (SpotCone; other trees' nodes: SpotCone's defaults, unread), then
+    // the representative's.
     float spreadCos, upScale, upOffset, lowScale, lowOffset, lowInvRange2;
     float repConeScale, repConeOffset;
     int representative;

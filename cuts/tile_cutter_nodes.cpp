@@ -69,7 +69,9 @@ void TileCutter::findSpotCones() {
     const std::uint32_t* w = wordsOf(packed_, 2, i);
     Cones& n = c[std::size_t(i)];
     const glm::dvec3 axis(floatOf(w[10]), floatOf(w[11]), floatOf(w[12]));
-    n.axis = glm::length(axis) > 0.0 ? glm::normalize(axis) : glm::dvec3(0.0, -1.0, 0.0);
+    // The bake stores no zero axis for a node with lights; were one there, its spread is π.
+    const bool axisless = !(glm::length(axis) > 0.0);
+    n.axis = axisless ? glm::dvec3(0.0, -1.0, 0.0) : glm::normalize(axis);
     const int slot = int(w[3]);
     if (i >= leaves_[2] - 1) {
       if (slot < spotStart_ || std::size_t(slot - spotStart_) >= cones_.size()) continue;
@@ -83,7 +85,7 @@ void TileCutter::findSpotCones() {
       const Cones& child = c[std::size_t(k)];
       if (child.empty) continue;
       const double angle = std::acos(std::clamp(glm::dot(n.axis, child.axis), -1.0, 1.0));
-      n.spread = std::max(n.spread, std::min(angle + child.spread, kPi));
+      n.spread = std::max(n.spread, axisless ? kPi : std::min(angle + child.spread, kPi));
       n.outerLow = std::min(n.outerLow, child.outerLow);
       n.innerLow = std::min(n.innerLow, child.innerLow);
       n.outerHigh = std::max(n.outerHigh, child.outerHigh);
@@ -93,13 +95,18 @@ void TileCutter::findSpotCones() {
     }
   }
   // The cones' terms, each widened (upper) or narrowed (lower) by 1e-6 in the cosine for
-  // the float arithmetic of the shader's smoothstep.
+  // the float arithmetic of the shader's smoothstep; the spread's cosine rounded down, so
+  // that a spread below float's resolution near 1 still counts (cos σ < 1, sin σ > 0).
   constexpr double kMargin = 1e-6;
+  const auto roundedDown = [](double c) {
+    const float f = float(c);
+    return double(f) > c ? std::nextafter(f, -1.0f) : f;
+  };
   for (int i = 0; i < count; ++i) {
     const Cones& n = c[std::size_t(i)];
     if (n.empty) continue;
     SpotCone& s = spotCones_[std::size_t(i)];
-    s.spreadCos = float(std::cos(std::min(n.spread + kMargin, kPi)));
+    s.spreadCos = roundedDown(std::cos(std::min(n.spread + kMargin, kPi)));
     const double upScale = 1.0 / (n.innerLow - n.outerLow);
     s.upScale = float(upScale);
     s.upOffset = float(-(n.outerLow - kMargin) * upScale);

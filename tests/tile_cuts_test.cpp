@@ -182,6 +182,33 @@ TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
   }
 }
 
+// Spots over the floor whose axes fan out by at most 2e-3 rad (a spread below float's
+// resolution of a cosine near 1), half with hard edges (inner = outer angle), their cones'
+// edges across the floor and the wall: the spot nodes' cone bounds (cuts/lane_cones.h) hold
+// at every pixel under the total rule, where a bound a hair too tight at a hard edge would
+// leave a lit node out as dark.
+TEST(TileCuts, SpotConeBoundsHoldAtHardEdgesOfFannedCones) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<Light> lights(2000);
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    Light& l = lights[i];
+    l.type = LightType::Spot;
+    l.position = {-3.0f + 9.0f * float(i) / 2000.0f, 4.0f + 0.01f * u(rng), 0.01f * u(rng)};
+    l.direction = glm::normalize(glm::vec3(2e-3f * u(rng), -1.0f, 2e-3f * u(rng)));
+    l.outerConeAngle = 0.9f;
+    l.innerConeAngle = i % 2 == 0 ? 0.9f : 0.5f;
+    l.colour = {1.0f, 0.75f, 0.45f};
+    l.intensity = 120.0f / 2000.0f;
+  }
+  for (const int tile : {4, 16}) {
+    const Checked c = checkTotalRule(lights, 0.02f, tile);
+    EXPECT_GT(c.sharedPixels, kSize * kSize / 2) << "tile " << tile;
+    EXPECT_EQ(c.failing, 0) << "tile " << tile;
+    EXPECT_LE(c.worstOverBound, 1.0001) << "tile " << tile;
+  }
+}
+
 // The words of pixel i's shared cut in `c`: its header but the entries' offset, then its
 // entries (up to the next cut's, as TileCutter::cut lays them out in order); none if it has
 // no shared cut.
