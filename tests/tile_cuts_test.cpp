@@ -6,8 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
-#include <cstring>
 #include <map>
 #include <random>
 #include <set>
@@ -16,135 +14,17 @@
 #include "bake/light_tree.h"
 #include "bake/light_tree_layout.h"
 #include "bake/light_tree_pack.h"
-#include "cuts/cell_cuts.h"
 #include "cuts/cut_heap.h"
 #include "cuts/far_field.h"
 #include "generators/light_layouts.h"
 #include "scene/shading_model.h"
 #include "tests/far_field_support.h"
+#include "tests/tile_cuts_support.h"
 
 namespace manylight {
 namespace {
 
-constexpr int kSize = 64;
-
-// A G-buffer of a floor (y = 0, facing up) on the left, with a patch of ceiling showing
-// through it, a wall (x = 3, facing −x) on the right, and a band of background at the top;
-// rows bottom-up as GL reads them. `pan` moves the view along z (a camera moving sideways).
-struct SyntheticGBuffer {
-  std::vector<float> position, normal, specular;
-  explicit SyntheticGBuffer(float pan = 0.0f)
-      : position(kSize * kSize * 4), normal(kSize * kSize * 4), specular(kSize * kSize * 4) {
-    for (int y = 0; y < kSize; ++y) {
-      for (int x = 0; x < kSize; ++x) {
-        const std::size_t i = (std::size_t(y) * kSize + x) * 4;
-        if (y >= kSize - 6) continue;  // background
-        const float u = float(x) / kSize, v = float(y) / kSize + pan / 6.0f;
-        glm::vec3 p, n;
-        if (x < kSize * 5 / 8 && y >= 40 && y < 48 && (x + y) % 3 == 0) {
-          // A patch of the ceiling seen through gaps: squares whose normals spread 180°.
-          p = {-3.0f + 9.6f * u, 2.5f, -3.0f + 6.0f * v};
-          n = {0.0f, -1.0f, 0.0f};
-        } else if (x < kSize * 5 / 8) {
-          p = {-3.0f + 9.6f * u, 0.0f, -3.0f + 6.0f * v};
-          n = {0.0f, 1.0f, 0.0f};
-        } else {
-          p = {3.0f, 6.0f * (u - 0.625f) * 2.0f, -3.0f + 6.0f * v};
-          n = {-1.0f, 0.0f, 0.0f};
-        }
-        std::memcpy(&position[i], &p, 12);
-        std::memcpy(&normal[i], &n, 12);
-        normal[i + 3] = 1.0f;
-      }
-    }
-  }
-  GBufferPixels pixels() const {
-    return {kSize, kSize, position.data(), normal.data(), specular.data()};
-  }
-};
-
 using layout::floatOf;
-
-struct Checked {
-  int sharedPixels = 0, failing = 0;
-  int perPixel = 0;             // covered pixels without a shared cut
-  int mixedSurfaces = 0;        // shared pixels facing over 90° away from their cut's first pixel
-  int farFieldPixels = 0;       // shared pixels whose cut has a far field
-  double worstOverBound = 0.0;  // largest error / bound, bounds above 1e-6 of the pixel
-};
-
-// Evaluates every shared cut of `cuts` at each of its pixels of `g` in double precision
-// against the exact sum of `lights`.
-Checked checkCuts(const SyntheticGBuffer& g, const std::vector<Light>& lights,
-                  const TileCuts& cuts) {
-  std::map<std::array<float, 3>, std::size_t> spotAt;  // positions are distinct
-  for (std::size_t i = 0; i < lights.size(); ++i) {
-    if (lights[i].type == LightType::Spot)
-      spotAt[{lights[i].position.x, lights[i].position.y, lights[i].position.z}] = i;
-  }
-  EXPECT_EQ(cuts.cutOfPixel.size(), std::size_t(kSize * kSize));
-  Checked c;
-  std::map<std::uint32_t, glm::dvec3> normalOfCut;  // its first pixel's
-  for (int y = 0; y < kSize; ++y) {
-    for (int x = 0; x < kSize; ++x) {
-      const std::size_t i = (std::size_t(y) * kSize + x) * 4;
-      if (g.normal[i + 3] == 0.0f) continue;
-      const std::uint32_t cut = cuts.cutOfPixel[std::size_t(y) * kSize + x];
-      if (cut == kNoSharedCut) {
-        ++c.perPixel;
-        continue;
-      }
-      EXPECT_LT(cut, std::uint32_t(cuts.sharedCuts));
-      const std::uint32_t* head = cuts.texels.data() + std::size_t(cut) * 8;
-      const glm::dvec3 p(g.position[i], g.position[i + 1], g.position[i + 2]);
-      const glm::dvec3 n(g.normal[i], g.normal[i + 1], g.normal[i + 2]);
-      if (glm::dot(normalOfCut.emplace(cut, n).first->second, n) < 0.0) ++c.mixedSurfaces;
-      glm::dvec3 exact(0.0), estimate(0.0);
-      for (const Light& l : lights)
-        exact += unitRadiance(l, p, n) * glm::dvec3(l.colour) * double(l.intensity);
-      const std::uint32_t* e = cuts.texels.data() + std::size_t(head[0]) * 4;
-      if ((head[7] & 0x7fffu) > 0) {  // far field entries (cuts/tile_cuts.h: the word's bits)
-        estimate += farFieldIrradiance(e, p, n) / shading::kPi;
-        e += 4 * kFarFieldTexels;
-        ++c.farFieldPixels;
-      }
-      for (int tree = 0; tree < 3; ++tree) {
-        for (std::uint32_t k = 0; k < head[1 + tree]; ++k) {
-          // The representative: direction or position and 1/range²; a spot's axis and cone
-          // (smoothstep of cos · scale + offset); then the node's intensity.
-          Light rep;
-          const glm::vec3 a(floatOf(e[0]), floatOf(e[1]), floatOf(e[2]));
-          rep.type = tree == 0   ? LightType::Directional
-                     : tree == 1 ? LightType::Point
-                                 : LightType::Spot;
-          rep.position = a;
-          rep.direction = -a;
-          if (floatOf(e[3]) > 0.0f) rep.range = 1.0f / std::sqrt(floatOf(e[3]));
-          e += 4;
-          if (tree == 2) {  // the scene's spot at that position, its cone as given
-            rep = lights[spotAt.at({a.x, a.y, a.z})];
-            e += 4;
-          }
-          estimate +=
-              unitRadiance(rep, p, n) * glm::dvec3(floatOf(e[0]), floatOf(e[1]), floatOf(e[2]));
-          e += 4;
-        }
-      }
-      const glm::dvec3 bound(floatOf(head[4]), floatOf(head[5]), floatOf(head[6]));
-      ++c.sharedPixels;
-      for (int ch = 0; ch < 3; ++ch) {
-        const double error = std::abs(estimate[ch] - exact[ch]);
-        // Float bounds and decoding against double sums: 1e-4 of the pixel, and a floor.
-        const double allowed = bound[ch] + 1e-4 * exact[ch] + 1e-9;
-        if (error > allowed) ++c.failing;
-        // Bounds below 1e-6 of the pixel are within the float rounding of its sums.
-        if (bound[ch] > 1e-6 * exact[ch])
-          c.worstOverBound = std::max(c.worstOverBound, error / bound[ch]);
-      }
-    }
-  }
-  return c;
-}
 
 Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tileSize,
                        int maxCut = 8000) {
@@ -428,101 +308,6 @@ TEST(TileCuts, SpecularPixelsAreLeftToThemselves) {
   const TileCuts cuts = cutter.cut(px, 16, CutRule{}, 1);
   EXPECT_EQ(cuts.cutOfPixel[0], kNoSharedCut);
   EXPECT_NE(cuts.cutOfPixel[1], kNoSharedCut);  // its neighbour shares a cut
-}
-
-}  // namespace
-}  // namespace manylight
-
-namespace manylight {
-namespace {
-
-// Whether `g` holds the shading point of pixel i of `gb` (as CellCuts decides it).
-bool regionHolds(const ShadingRegion& g, const SyntheticGBuffer& gb, std::size_t i) {
-  const glm::vec3 p(gb.position[4 * i], gb.position[4 * i + 1], gb.position[4 * i + 2]);
-  const glm::vec3 n =
-      glm::normalize(glm::vec3(gb.normal[4 * i], gb.normal[4 * i + 1], gb.normal[4 * i + 2]));
-  return glm::all(glm::lessThanEqual(g.pMin, p)) && glm::all(glm::lessThanEqual(p, g.pMax)) &&
-         glm::dot(n, g.axis) >= g.cosSpread;
-}
-
-// Cuts kept per cell from frame to frame (cuts/cell_cuts.h), while the view pans: every
-// pixel lies in the region its cell's cut holds for, and every shared pixel stays within its
-// cut's bound (the total rule's guarantee); a frame seen again keeps every cut, one panned a
-// little keeps most, and another rule starts over.
-TEST(TileCuts, KeptCellCutsHoldForEveryPixelAsTheViewMoves) {
-  const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 1500, 7);
-  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
-  CellCuts cells(cutter);
-  const CutRule rule{0.02f, true, 8000};
-  TileCuts before;
-  for (const float pan : {0.0f, 0.0f, 0.05f, 0.6f, 2.0f}) {
-    SCOPED_TRACE("pan " + std::to_string(pan));
-    const SyntheticGBuffer g(pan);
-    const TileCuts cuts = cells.cut(g.pixels(), rule, 2);
-    EXPECT_GT(cells.cellSize(), 0.0f);
-    const Checked c = checkCuts(g, lights, cuts);
-    EXPECT_GT(c.sharedPixels, kSize * kSize / 2);
-    EXPECT_EQ(c.failing, 0);
-    EXPECT_LE(c.worstOverBound, 1.0001);
-    EXPECT_EQ(c.mixedSurfaces, 0);
-    int outside = 0;
-    for (std::size_t i = 0; i < cuts.cutOfPixel.size(); ++i) {
-      const std::uint32_t k = cuts.cutOfPixel[i];
-      if (k < cells.frameCellCuts() && !regionHolds(cells.region(k), g, i)) ++outside;
-    }
-    EXPECT_EQ(outside, 0);
-    if (pan == 0.0f && !before.texels.empty()) {  // the same frame again
-      EXPECT_EQ(cuts.made, 0);
-      EXPECT_EQ(cuts.texels, before.texels);
-      EXPECT_EQ(cuts.cutOfPixel, before.cutOfPixel);
-    }
-    if (pan == 0.05f) {  // a small pan: most cells keep their cuts
-      EXPECT_GT(cuts.kept, 3 * cuts.made);
-    }
-    before = cuts;
-  }
-  const TileCuts other = cells.cut(SyntheticGBuffer(2.0f).pixels(), CutRule{0.05f, true, 8000}, 2);
-  EXPECT_EQ(other.kept, 0);  // another ε: every cut anew
-  EXPECT_GT(other.made, 0);
-}
-
-// Past the memory limit, the cells the last frame did not use are dropped (and found again if
-// they come back into view); the last frame's stay.
-TEST(TileCuts, PastTheLimitUnusedCellsAreDropped) {
-  const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 500, 7);
-  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
-  CellCuts cells(cutter, 1);  // any frame's cells exceed one word
-  const CutRule rule{0.02f, true, 8000};
-  const SyntheticGBuffer here(0.0f), there(3.0f);
-  cells.cut(here.pixels(), rule, 2);
-  const std::size_t first = cells.cellCount();
-  EXPECT_EQ(cells.cut(here.pixels(), rule, 2).made, 0);  // over the limit, but all in use
-  EXPECT_EQ(cells.cellCount(), first);
-  const TileCuts seen = cells.cut(there.pixels(), rule, 2);
-  EXPECT_GT(cells.cellCount(), first);
-  EXPECT_EQ(cells.cut(there.pixels(), rule, 2).made, 0);  // drops the cells only `here` used
-  EXPECT_EQ(cells.cellCount(), std::size_t(seen.made + seen.kept));
-  const TileCuts back = cells.cut(here.pixels(), rule, 2);  // found again
-  EXPECT_GT(back.made, 0);
-  EXPECT_EQ(checkCuts(here, lights, back).failing, 0);
-}
-
-// A cell whose cut is full splits into eight smaller ones, twice at most; the pixels of a
-// cell still full take squares' cuts for the frame, as render's frames have them, and all of
-// them hold. (2,000 uniform lights under the total rule, at most 1,600 nodes: 65 cells' cuts
-// fit, of 328 cells made, and one square's.)
-TEST(TileCuts, FullCellsSplitThenFallBackToSquares) {
-  const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
-  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
-  CellCuts cells(cutter);
-  const SyntheticGBuffer g;
-  const TileCuts cuts = cells.cut(g.pixels(), CutRule{0.02f, true, 1600}, 2);
-  const Checked c = checkCuts(g, lights, cuts);
-  EXPECT_GT(cells.cellCount(), 2 * cells.frameCellCuts());         // the split cells are kept
-  EXPECT_GT(std::size_t(cuts.sharedCuts), cells.frameCellCuts());  // squares' cuts after cells'
-  EXPECT_GT(c.sharedPixels, 1000);
-  EXPECT_EQ(c.failing, 0);
-  EXPECT_LE(c.worstOverBound, 1.0001);
 }
 
 }  // namespace
