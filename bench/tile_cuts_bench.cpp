@@ -63,12 +63,11 @@ void cutFrame(benchmark::State& state) {
   TileCuts cuts;
   for (auto _ : state) {
     cuts = c.cut(px, 16, rule, threads);
-    benchmark::DoNotOptimize(cuts.texels.data());
+    benchmark::DoNotOptimize(cuts.texels.head.data());
   }
   state.counters["threads"] = threads;
   state.counters["bounds"] = double(cuts.boundEvaluations);
-  state.counters["entry_texels"] =
-      double(cuts.texels.size() / 4 - 2 * std::size_t(cuts.sharedCuts));
+  state.counters["entry_texels"] = double(cuts.texels.texels() - 2 * std::size_t(cuts.sharedCuts));
   state.counters["shared_cuts"] = cuts.sharedCuts;
   state.counters["per_pixel_groups"] = cuts.perPixelGroups;
   state.counters["surface_splits"] = cuts.surfaceSplits;

@@ -334,27 +334,28 @@ void CellCuts::frameCuts(const GBufferPixels& px, const CutRule& rule, int threa
       anyFull = true;
     }
   }
-  const TileCuts squares =
-      anyFull ? cutter_.cut(px, kFallbackTile, rule, threads, &full) : TileCuts{};
+  TileCuts squares = anyFull ? cutter_.cut(px, kFallbackTile, rule, threads, &full) : TileCuts{};
   const std::size_t cuts = frameCells_.size() + std::size_t(squares.sharedCuts);
   std::size_t cellTexels = 0;
   for (const int c : frameCells_) cellTexels += cells_[std::size_t(c)].entries.size() / 4;
   ++frame_;
+  // The head: every header, then the cells' entries; the squares' entries follow as they
+  // are (their head holds only their headers).
   const std::size_t squareHeads = 2 * std::size_t(squares.sharedCuts);
-  out.texels.assign((2 * cuts + cellTexels) * 4 + squares.texels.size() - squareHeads * 4, 0u);
+  std::vector<std::uint32_t>& head = out.texels.head;
+  head.assign((2 * cuts + cellTexels) * 4, 0u);
   std::size_t next = 2 * cuts;
   for (std::size_t u = 0; u < frameCells_.size(); ++u) {
     const Cell& cell = cells_[std::size_t(frameCells_[u])];
-    cell.cut.writeTexels(u, cell.entries.data(), cell.entries.size() / 4, next, out.texels.data());
+    cell.cut.writeTexels(u, cell.entries.data(), cell.entries.size() / 4, next, head.data());
   }
   // The squares' headers, their first entries moved past the cells' entries.
-  std::uint32_t* head = out.texels.data() + 8 * frameCells_.size();
-  for (std::size_t k = 0; k < std::size_t(squares.sharedCuts); ++k, head += 8) {
-    std::copy_n(squares.texels.data() + 8 * k, 8, head);
-    head[0] = std::uint32_t(head[0] - squareHeads + next);
+  std::uint32_t* h = head.data() + 8 * frameCells_.size();
+  for (std::size_t k = 0; k < std::size_t(squares.sharedCuts); ++k, h += 8) {
+    std::copy_n(squares.texels.head.data() + 8 * k, 8, h);
+    h[0] = std::uint32_t(h[0] - squareHeads + next);
   }
-  std::copy(squares.texels.begin() + std::ptrdiff_t(squareHeads * 4), squares.texels.end(),
-            out.texels.begin() + std::ptrdiff_t(next * 4));
+  out.texels.takePieces(std::move(squares.texels));
   for (std::size_t i = 0; i < n; ++i) {
     if (squares.cutOfPixel.empty() || squares.cutOfPixel[i] == kNoSharedCut) continue;
     out.cutOfPixel[i] = std::uint32_t(frameCells_.size()) + squares.cutOfPixel[i];

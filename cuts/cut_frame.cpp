@@ -34,11 +34,28 @@ constexpr int kWalkCost = 24;
 // One thread's cuts (numbered in order; cutOfPixel holds these numbers until the merge) and
 // their entries.
 struct Part {
+  std::size_t chunkWords;  // CutRule::chunkWords
   std::vector<RegionCut> cuts;
-  std::vector<std::size_t> entry;  // each cut's first word in `entries`
-  std::vector<std::uint32_t> entries;
-  long long bounds = 0;  // split groups' too
+  std::vector<std::size_t> entry;                  // each cut's first word in its chunk
+  std::vector<std::uint32_t> entries;              // the chunk being filled
+  std::vector<std::vector<std::uint32_t>> chunks;  // those filled
+  std::vector<std::size_t> chunkEnd;               // per chunk filled, the cuts up to its end
+  long long bounds = 0;                            // split groups' too
   int perPixel = 0, splits = 0;
+
+  explicit Part(std::size_t words) : chunkWords(words) { entries.reserve(chunkWords); }
+  void closeFullChunk() {
+    if (entries.size() < chunkWords) return;
+    chunks.push_back(std::move(entries));
+    chunkEnd.push_back(cuts.size());
+    entries = {};
+    entries.reserve(chunkWords);
+  }
+  std::size_t words() const {
+    std::size_t n = entries.size();
+    for (const auto& c : chunks) n += c.size();
+    return n;
+  }
 };
 
 // A group of a square's covered pixels (indices y · width + x), and the seed its cut
@@ -370,7 +387,8 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   const int coarseX = (px.width + top - 1) / top;
   const int coarse = coarseX * ((px.height + top - 1) / top);
   threads = std::clamp(threads, 1, std::max(coarse, 1));
-  std::vector<Part> parts(static_cast<std::size_t>(threads));
+  std::vector<Part> parts;
+  for (int t = 0; t < threads; ++t) parts.emplace_back(rule.chunkWords);
   // Each thread takes the next square not yet taken: their costs differ tenfold, so squares
   // dealt out in turn would leave one thread behind the others. partOf[t] says whose square
   // t was; the merge below renumbers each pixel's cut by it.
@@ -383,17 +401,18 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
       cutSquare(*this, workspace, px,
                 squareAt(px, (t % coarseX) * top, (t / coarseX) * top, top, only), tileSize, rule,
                 parts[std::size_t(index)], out.cutOfPixel);
+      parts[std::size_t(index)].closeFullChunk();
     }
   };
   onThreads(threads, work);
 
-  // Number the cuts part after part, and lay out headers, then entries.
+  // Number the cuts part after part, and lay out headers, then entries, part after part and
+  // chunk after chunk.
   std::vector<std::uint32_t> firstCut(parts.size(), 0);
-  std::size_t cuts = 0, entryTexels = 0;
+  std::size_t cuts = 0;
   for (std::size_t k = 0; k < parts.size(); ++k) {
     firstCut[k] = std::uint32_t(cuts);
     cuts += parts[k].cuts.size();
-    entryTexels += parts[k].entries.size() / 4;
     out.boundEvaluations += parts[k].bounds;
     out.perPixelGroups += parts[k].perPixel;
     out.surfaceSplits += parts[k].splits;
@@ -406,15 +425,21 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     const int x = int(i % std::size_t(px.width)), y = int(i / std::size_t(px.width));
     c += firstCut[std::size_t(partOf[std::size_t((y / top) * coarseX + x / top)])];
   }
-  out.texels.assign((2 * cuts + entryTexels) * 4, 0u);
-  std::size_t next = 2 * cuts, cut = 0;
-  for (const Part& part : parts) {
+  out.texels.head.assign(8 * cuts, 0u);
+  std::size_t next = 2 * cuts, cut = 0;  // the texel where a part's entries start
+  for (Part& part : parts) {
+    std::size_t chunkStart = next, c = 0;
     for (std::size_t k = 0; k < part.cuts.size(); ++k, ++cut) {
+      for (; c < part.chunkEnd.size() && k >= part.chunkEnd[c]; ++c)
+        chunkStart += part.chunks[c].size() / 4;
       const RegionCut& r = part.cuts[k];
       out.exactCuts += r.exact ? 1 : 0;
-      r.writeTexels(cut, part.entries.data() + part.entry[k], r.entryTexels(), next,
-                    out.texels.data());
+      r.writeHeader(std::uint32_t(chunkStart + part.entry[k] / 4),
+                    out.texels.head.data() + 8 * cut);
     }
+    next += part.words() / 4;
+    for (auto& chunk : part.chunks) out.texels.append(std::move(chunk));
+    out.texels.append(std::move(part.entries));
   }
   return out;
 }

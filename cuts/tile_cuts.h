@@ -63,6 +63,7 @@
 
 #include "bake/light_pack.h"
 #include "bake/light_tree_pack.h"
+#include "cuts/cut_texels.h"
 #include "cuts/far_field.h"
 #include "cuts/node_lanes.h"
 #include "cuts/pixel_groups.h"
@@ -117,6 +118,10 @@ struct CutRule {
   // TileCutter::cut: the most entry texels a square's cuts take per pixel that shares them
   // (kCutTexelBudget over the frame's pixels, set by the renderer; unbounded here).
   std::size_t texelsPerPixel = std::size_t(1) << 32;
+  // TileCutter::cut: each thread's entries go into chunks of about this many words (16 MiB),
+  // reserved whole and never copied to grow (cuts/cut_texels.h says why); a chunk is closed
+  // after the square that fills it, so that a square's cuts lie in one chunk.
+  std::size_t chunkWords = std::size_t(1) << 22;
 };
 
 // The frame's shared cuts. Each pixel names its cut (cutOfPixel, one word per pixel, rows
@@ -147,7 +152,7 @@ struct CutRule {
 // (cuts/pixel_groups.h), or in playback a cell of the scene (cuts/cell_cuts.h).
 struct TileCuts {
   std::vector<std::uint32_t> cutOfPixel;  // per pixel
-  std::vector<std::uint32_t> texels;      // 4 words each
+  CutTexels texels;                       // 4 words each, in pieces
   long long boundEvaluations = 0;         // on the CPU, all groups together
   int sharedCuts = 0;                     // groups with a shared cut
   int exactCuts = 0;                      // of them, exact ones (RegionCut::exact)

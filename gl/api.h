@@ -46,6 +46,8 @@
   X(PFNGLBINDBUFFERPROC, glBindBuffer)                           \
   X(PFNGLBUFFERDATAPROC, glBufferData)                           \
   X(PFNGLBUFFERSUBDATAPROC, glBufferSubData)                     \
+  X(PFNGLMAPBUFFERRANGEPROC, glMapBufferRange)                   \
+  X(PFNGLUNMAPBUFFERPROC, glUnmapBuffer)                         \
   X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers)                 \
   X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)           \
   X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                 \

@@ -187,8 +187,9 @@ void LightcutsMethod::cutTiles(const GBuffer& gbuffer, const View& view, bool sp
   } else {
     tileInfo_ = tileCutter_->cut(pixels, tileSize, rule, threads);
   }
-  tileCuts_ = gl::uploadTextureBuffer(tileInfo_.texels.data(), tileInfo_.texels.size() / 4,
-                                      GL_RGBA32UI, "tile cuts");
+  gl::fillTextureBuffer(
+      tileCuts_, tileInfo_.texels.texels(), GL_RGBA32UI,
+      [&](void* to) { tileInfo_.texels.writeTo(static_cast<std::uint32_t*>(to)); }, "tile cuts");
   tileInfo_.texels = {};
   glBindTexture(GL_TEXTURE_2D, cutOfPixel_.id());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);

@@ -42,14 +42,15 @@ struct FullCuts {
 FullCuts fullCuts(const TileCuts& c) {
   FullCuts f;
   std::vector<bool> full(std::size_t(c.sharedCuts), false);
+  const std::vector<std::uint32_t> texels = c.texels.flat();
   for (int k = 0; k < c.sharedCuts; ++k) {
-    const std::uint32_t* header = c.texels.data() + 8 * std::size_t(k);
+    const std::uint32_t* header = texels.data() + 8 * std::size_t(k);
     if ((header[7] & kFullCutBit) == 0) continue;
     full[std::size_t(k)] = true;
     ++f.cuts;
     // No entries of any tree, none in a far field, nothing left out, no lobes; and the
     // next cut's entries start where its would.
-    const std::size_t next = k + 1 < c.sharedCuts ? header[8] : c.texels.size() / 4;
+    const std::size_t next = k + 1 < c.sharedCuts ? header[8] : texels.size() / 4;
     if (header[1] + header[2] + header[3] == 0 && header[7] == kFullCutBit && next == header[0])
       ++f.empty;
   }
@@ -80,7 +81,7 @@ TEST(ExactCuts, FullCutsBecomeExactWhereTheRendererAllowsIt) {
   EXPECT_EQ(e.empty, e.cuts);
   EXPECT_EQ(exact.exactCuts, e.cuts);
   EXPECT_GE(e.pixels, s.pixels);
-  EXPECT_LT(exact.texels.size(), shared.texels.size());
+  EXPECT_LT(exact.texels.words(), shared.texels.words());
 }
 
 }  // namespace

@@ -83,6 +83,7 @@ Checked checkCuts(const MaterialGBuffer& g, const std::vector<Light>& lights,
     if (lights[i].type == LightType::Spot)
       spotAt[{lights[i].position.x, lights[i].position.y, lights[i].position.z}] = i;
   }
+  const std::vector<std::uint32_t> texels = cuts.texels.flat();
   Checked c;
   std::map<std::uint32_t, int> kinds;  // per shared cut: 1 metal-like pixels, 2 others
   for (std::size_t i = 0; i < std::size_t(kSize * kSize); ++i) {
@@ -106,8 +107,8 @@ Checked checkCuts(const MaterialGBuffer& g, const std::vector<Light>& lights,
     };
     glm::dvec3 exact(0.0), estimate(0.0);
     for (const Light& l : lights) exact += radiance(l);
-    const std::uint32_t* head = cuts.texels.data() + std::size_t(cut) * 8;
-    const std::uint32_t* e = cuts.texels.data() + std::size_t(head[0]) * 4;
+    const std::uint32_t* head = texels.data() + std::size_t(cut) * 8;
+    const std::uint32_t* e = texels.data() + std::size_t(head[0]) * 4;
     glm::dvec3 bound = m.albedo * glm::dvec3(floatOf(head[4]), floatOf(head[5]), floatOf(head[6]));
     if (head[7] & kLobesBit) {
       ++c.lobeCuts;

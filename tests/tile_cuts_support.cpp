@@ -22,6 +22,7 @@ Checked checkCuts(const SyntheticGBuffer& g, const std::vector<Light>& lights,
       spotAt[{lights[i].position.x, lights[i].position.y, lights[i].position.z}] = i;
   }
   EXPECT_EQ(cuts.cutOfPixel.size(), std::size_t(kSize * kSize));
+  const std::vector<std::uint32_t> texels = cuts.texels.flat();
   Checked c;
   std::map<std::uint32_t, glm::dvec3> normalOfCut;  // its first pixel's
   for (int y = 0; y < kSize; ++y) {
@@ -34,14 +35,14 @@ Checked checkCuts(const SyntheticGBuffer& g, const std::vector<Light>& lights,
         continue;
       }
       EXPECT_LT(cut, std::uint32_t(cuts.sharedCuts));
-      const std::uint32_t* head = cuts.texels.data() + std::size_t(cut) * 8;
+      const std::uint32_t* head = texels.data() + std::size_t(cut) * 8;
       const glm::dvec3 p(g.position[i], g.position[i + 1], g.position[i + 2]);
       const glm::dvec3 n(g.normal[i], g.normal[i + 1], g.normal[i + 2]);
       if (glm::dot(normalOfCut.emplace(cut, n).first->second, n) < 0.0) ++c.mixedSurfaces;
       glm::dvec3 exact(0.0), estimate(0.0);
       for (const Light& l : lights)
         exact += unitRadiance(l, p, n) * glm::dvec3(l.colour) * double(l.intensity);
-      const std::uint32_t* e = cuts.texels.data() + std::size_t(head[0]) * 4;
+      const std::uint32_t* e = texels.data() + std::size_t(head[0]) * 4;
       if ((head[7] & 0x7fffu) > 0) {  // far field entries (cuts/tile_cuts.h: the word's bits)
         estimate += farFieldIrradiance(e, p, n) / shading::kPi;
         e += 4 * kFarFieldTexels;

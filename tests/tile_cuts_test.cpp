@@ -94,16 +94,16 @@ TEST(TileCuts, SpotConeBoundsHoldAtHardEdgesOfFannedCones) {
 // The words of pixel i's shared cut in `c`: its header but the entries' offset, then its
 // entries (up to the next cut's, as TileCutter::cut lays them out in order); none if it has
 // no shared cut.
-std::vector<std::uint32_t> cutWords(const TileCuts& c, std::size_t i) {
+std::vector<std::uint32_t> cutWords(const TileCuts& c, const std::vector<std::uint32_t>& texels,
+                                    std::size_t i) {
   const std::uint32_t cut = c.cutOfPixel[i];
   if (cut == kNoSharedCut) return {};
-  const std::uint32_t* header = c.texels.data() + 8 * std::size_t(cut);
+  const std::uint32_t* header = texels.data() + 8 * std::size_t(cut);
   const std::size_t first = header[0];
-  const std::size_t end =
-      int(cut) + 1 < c.sharedCuts ? std::size_t(header[8]) : c.texels.size() / 4;
+  const std::size_t end = int(cut) + 1 < c.sharedCuts ? std::size_t(header[8]) : texels.size() / 4;
   std::vector<std::uint32_t> words(header + 1, header + 8);
-  words.insert(words.end(), c.texels.begin() + std::ptrdiff_t(4 * first),
-               c.texels.begin() + std::ptrdiff_t(4 * end));
+  words.insert(words.end(), texels.begin() + std::ptrdiff_t(4 * first),
+               texels.begin() + std::ptrdiff_t(4 * end));
   return words;
 }
 
@@ -120,8 +120,30 @@ TEST(TileCuts, NodesDecodedOnFirstUseGiveTheSameCutsOnAnyNumberOfThreads) {
   EXPECT_GT(one.sharedCuts, 0);
   EXPECT_EQ(one.sharedCuts, four.sharedCuts);
   EXPECT_EQ(one.boundEvaluations, four.boundEvaluations);
+  const std::vector<std::uint32_t> oneTexels = one.texels.flat(), fourTexels = four.texels.flat();
   for (std::size_t i = 0; i < one.cutOfPixel.size(); ++i)
-    ASSERT_EQ(cutWords(one, i), cutWords(four, i)) << "pixel " << i;
+    ASSERT_EQ(cutWords(one, oneTexels, i), cutWords(four, fourTexels, i)) << "pixel " << i;
+}
+
+// Each thread's entries go into chunks (CutRule::chunkWords), laid out one after another:
+// with chunks of 64 words, closed after nearly every square, the frame's texels are word for
+// word those of one chunk, and on two threads each pixel's cut is the same.
+TEST(TileCuts, EntriesInManyChunksLayOutAsInOne) {
+  const SyntheticGBuffer g;
+  const std::vector<Light> lights = layoutLights(LightLayout::Mixed, 3000, 11);
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  CutRule rule{0.02f, false, 1000};
+  const TileCuts one = cutter.cut(g.pixels(), 4, rule, 1);
+  const TileCuts oneTwo = cutter.cut(g.pixels(), 4, rule, 2);
+  rule.chunkWords = 64;
+  const TileCuts many = cutter.cut(g.pixels(), 4, rule, 1);
+  const TileCuts manyTwo = cutter.cut(g.pixels(), 4, rule, 2);
+  EXPECT_GT(one.texels.words(), 100 * rule.chunkWords);
+  EXPECT_EQ(many.texels.flat(), one.texels.flat());
+  EXPECT_EQ(many.cutOfPixel, one.cutOfPixel);
+  const std::vector<std::uint32_t> a = oneTwo.texels.flat(), b = manyTwo.texels.flat();
+  for (std::size_t i = 0; i < one.cutOfPixel.size(); ++i)
+    ASSERT_EQ(cutWords(oneTwo, a, i), cutWords(manyTwo, b, i)) << "pixel " << i;
 }
 
 // A 4×4 square (the finest) whose cut fills up before the rule holds with the CPU's margin,
@@ -149,7 +171,8 @@ TEST(TileCuts, UnderTheTotalRuleAHopelessCutIsSharedAndMarkedFull) {
   const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
   auto fullCuts = [](const TileCuts& cuts) {
     int full = 0;
-    for (int c = 0; c < cuts.sharedCuts; ++c) full += (cuts.texels[8 * c + 7] & kFullCutBit) != 0;
+    for (int c = 0; c < cuts.sharedCuts; ++c)
+      full += (cuts.texels.head[8 * c + 7] & kFullCutBit) != 0;
     return full;
   };
   const TileCuts total = cutter.cut(g.pixels(), 16, CutRule{0.02f, true, 400}, 2);
@@ -174,11 +197,12 @@ TEST(TileCuts, EachSquaresCutsStayWithinTheirTexelBudget) {
   const TileCuts free = cutter.cut(g.pixels(), 16, rule, 2);
   rule.texelsPerPixel = 20;
   const TileCuts held = cutter.cut(g.pixels(), 16, rule, 2);
-  auto words = [](const TileCuts& t, std::uint32_t c) {  // cut c's header and entries
-    const std::size_t end =
-        c + 1 < std::uint32_t(t.sharedCuts) ? t.texels[8 * (c + 1)] : t.texels.size() / 4;
-    std::vector<std::uint32_t> w(t.texels.begin() + 8 * c + 1, t.texels.begin() + 8 * c + 8);
-    w.insert(w.end(), t.texels.begin() + 4 * t.texels[8 * c], t.texels.begin() + 4 * end);
+  const std::vector<std::uint32_t> freeTexels = free.texels.flat(), heldTexels = held.texels.flat();
+  auto words = [&](const TileCuts& t, std::uint32_t c) {  // cut c's header and entries
+    const std::vector<std::uint32_t>& all = &t == &free ? freeTexels : heldTexels;
+    const std::size_t end = c + 1 < std::uint32_t(t.sharedCuts) ? all[8 * (c + 1)] : all.size() / 4;
+    std::vector<std::uint32_t> w(all.begin() + 8 * c + 1, all.begin() + 8 * c + 8);
+    w.insert(w.end(), all.begin() + 4 * all[8 * c], all.begin() + 4 * end);
     return w;
   };
   std::map<int, std::size_t> used, budget;  // entry texels by square (x / 32 + 2 · y / 32)
@@ -230,9 +254,9 @@ TileCuts asTileCuts(const RegionCut& r, const std::vector<std::uint32_t>& entrie
   t.cutOfPixel.assign(std::size_t(kSize * kSize), kNoSharedCut);
   for (const int i : pixels) t.cutOfPixel[std::size_t(i)] = 0;
   t.sharedCuts = 1;
-  t.texels.assign(8, 0u);
-  r.writeHeader(2, t.texels.data());
-  t.texels.insert(t.texels.end(), entries.begin(), entries.end());
+  t.texels.head.assign(8, 0u);
+  r.writeHeader(2, t.texels.head.data());
+  t.texels.head.insert(t.texels.head.end(), entries.begin(), entries.end());
   return t;
 }
 
