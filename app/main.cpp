@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "base/huge_pages.h"
 
 using namespace manylight;
 using namespace manylight::cli;
@@ -188,6 +189,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  restartWithHugePages(argv);
   const auto processStart = Clock::now();
   CLI::App app{"manylight: headless OpenGL renderer for glTF scenes with many lights"};
   app.require_subcommand(1);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 
+#include "base/huge_pages.h"
 #include "generators/scene_builder.h"
 #include "gl/context.h"
 #include "render/render_job.h"
@@ -92,6 +93,7 @@ BENCHMARK_CAPTURE(renderTime, reference, Method::Reference)
 }  // namespace
 
 int main(int argc, char** argv) {
+  manylight::restartWithHugePages(argv);  // as the command line does
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
