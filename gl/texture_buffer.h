@@ -27,8 +27,8 @@ TextureBuffer uploadTextureBuffer(const void* data, std::size_t texels, GLenum f
 // buffer's mapped memory: no copy of them is made first (cuts/cut_texels.h says why that
 // matters). Keeps t's buffer where it holds as many already (texels past `texels` keep what
 // they held: the shader must not read them), else makes a new one, as large.
-// Throws GlError naming `what` when the driver's texture buffers are too small or the
-// mapping fails.
+// `write` must not throw (the buffer is mapped while it runs). Throws GlError naming `what`
+// when the driver's texture buffers are too small or the mapping fails.
 void fillTextureBuffer(TextureBuffer& t, std::size_t texels, GLenum format,
                        const std::function<void(void*)>& write, const std::string& what);
 

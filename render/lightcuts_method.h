@@ -127,7 +127,7 @@ class LightcutsMethod {
   gl::TextureBuffer nodes_;
   std::unique_ptr<TileCutter> tileCutter_;   // null for the distance criterion
   mutable std::unique_ptr<CellCuts> cells_;  // made by the first frame with keepCuts
-  mutable gl::TextureBuffer tileCuts_;       // this frame's (cuts/tile_cuts.h)
+  mutable gl::TextureBuffer tileCuts_;       // this frame's (cuts/tile_cuts.h), storage kept
   gl::Texture cutOfPixel_;                   // this frame's cut per pixel (R32UI)
   mutable TileCuts tileInfo_;                // its counts (the texels are dropped)
   mutable std::vector<float> readback_;
