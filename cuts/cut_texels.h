@@ -4,10 +4,10 @@
 // copied once, into their destination (writeTo): the renderer writes them straight into the
 // GL buffer it maps. Memory touched for the first time is the cost here, not the copying:
 // on the 2-core test machine the first write to 64 MiB took 160 ms and the second 3 ms
-// (page faults), and a 640×480 frame of 65,536 street-ranged spots at ε = 0.02 has 60 MB of
-// cut texels. Gathered into one vector before the upload, with each thread's entries grown
-// by doubling, every word would be first touched four times instead of twice (the chunks
-// here, the driver's buffer).
+// (page faults), and a 640×480 frame of 65,536 street spots (`--layout street`) at ε = 0.02 has 60
+// MB of cut texels. Gathered into one vector before the upload, with each thread's entries grown by
+// doubling, every word would be first touched four times instead of twice (the chunks here, the
+// driver's buffer).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
