@@ -181,6 +181,20 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& c) {
                    "The share of values (0..1) allowed to differ by more than --max-abs")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  CLI::Option* relative =
+      compare
+          ->add_option("--max-relative", c.thresholds.maxRelative,
+                       "Instead of value by value: B is the reference, and a pixel it covers "
+                       "(alpha > 0) may be off by this share of its largest channel "
+                       "(max over channels of |A - B| / max of B)")
+          ->check(CLI::Range(0.0, 1e30));
+  compare
+      ->add_option("--percentile", c.thresholds.percentile,
+                   "With --max-relative: this percentile of the pixels' relative errors is "
+                   "what must stay within it (100: every pixel)")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-9, 100.0))
+      ->needs(relative);
   compare->add_option("--diff", c.diff,
                       "Where to write the difference image when they differ (default: B.diff.png)");
   return compare;

@@ -63,6 +63,16 @@ int runCompare(const CompareArgs& a) {
                 v.channels[1]);
     return kExitDiffer;
   }
+  if (out.relative) {
+    const RelativeOutcome& e = out.errors;
+    std::printf(
+        "%s %s: %s: relative error against the second, at percentile %g: %g (limit %g); max %g "
+        "at pixel (%d, %d); %lld pixels compared%s%s\n",
+        a.a.c_str(), a.b.c_str(), out.passed ? "match" : "differ", a.thresholds.percentile,
+        e.atPercentile, a.thresholds.maxRelative, e.largest, e.maxX, e.maxY, e.pixels,
+        out.diffWritten ? "; difference: " : "", out.diffWritten ? diffPath.c_str() : "");
+    return out.passed ? kExitOk : kExitDiffer;
+  }
   std::printf(
       "%s %s: %s: %lld of %lld values (%.4g%%) off by more than %g; max %g at pixel (%d, %d) "
       "channel %d; "

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "base/output_file.h"
+#include "image/image_errors.h"
 #include "scene/image_io.h"
 
 namespace manylight {
@@ -90,6 +91,43 @@ Image readImage(const std::string& path) {
   return img;
 }
 
+namespace {
+
+// compareImageFiles' relative test, on `out` from the value-by-value comparison of the
+// same files.
+CompareOutcome compareRelative(const std::string& a, const std::string& b,
+                               const CompareThresholds& t, const std::string& diffPath,
+                               CompareOutcome out) {
+  const Image image = readImage(a), reference = readImage(b);
+  const RelativeErrors e = relativeErrors(image, reference);
+  out.relative = true;
+  out.errors = {percentileOf(e.sorted, t.percentile), e.sorted.empty() ? 0.0 : e.sorted.back(),
+                e.maxX, e.maxY, (long long)e.sorted.size()};
+  out.passed = out.errors.atPercentile <= t.maxRelative;
+  if (out.passed || diffPath.empty()) return out;
+  if (fs::path(diffPath).extension() != ".png")
+    throw ImageError(diffPath + ": the difference image must be a .png");
+  Image diff;
+  diff.width = reference.width;
+  diff.height = reference.height;
+  diff.values = ImageValues::Data;
+  diff.rgba.assign(reference.rgba.size(), 1.0f);
+  for (int y = 0; y < reference.height; ++y) {
+    for (int x = 0; x < reference.width; ++x) {
+      const double r = reference.pixel(x, y)[3] > 0.0f
+                           ? relativeError(image.pixel(x, y), reference.pixel(x, y))
+                           : 0.0;
+      const double grey = t.maxRelative > 0.0 ? r / (2.0 * t.maxRelative) : (r > 0.0 ? 1.0 : 0.0);
+      for (int c = 0; c < 3; ++c) diff.pixel(x, y)[c] = float(std::min(grey, 1.0));
+    }
+  }
+  writeImage(diff, diffPath);
+  out.diffWritten = true;
+  return out;
+}
+
+}  // namespace
+
 CompareOutcome compareImageFiles(const std::string& a, const std::string& b,
                                  const CompareThresholds& thresholds, const std::string& diffPath) {
   for (const std::string& path : {a, b}) {
@@ -107,6 +145,8 @@ CompareOutcome compareImageFiles(const std::string& a, const std::string& b,
   }
   const ImageComparison& v = out.values;
   out.passed = v.sameShape && double(v.failing) <= thresholds.maxFraction * double(v.values);
+  if (v.sameShape && thresholds.maxRelative >= 0.0)
+    return compareRelative(a, b, thresholds, diffPath, out);
   if (out.passed || !v.sameShape || diffPath.empty()) return out;
   if (fs::path(diffPath).extension() != ".png")
     throw ImageError(diffPath + ": the difference image must be a .png");

@@ -52,22 +52,41 @@ void checkOutputPath(const std::string& path);
 // ImageError.
 Image readImage(const std::string& path);
 
-// `manylight compare`: two image files, value by value, against two thresholds.
+// `manylight compare`: two image files, value by value against two thresholds, or with
+// maxRelative ≥ 0 pixel by pixel against the second as the reference (relativeError of
+// image/image_errors.h over the pixels it covers): the percentile-th percentile of the
+// pixels' relative errors may be at most maxRelative.
 struct CompareThresholds {
-  double maxAbs = 0.0;       // a value may differ by this much (8-bit files: codes / 255)
-  double maxFraction = 0.0;  // the share of values allowed to differ by more
+  double maxAbs = 0.0;        // a value may differ by this much (8-bit files: codes / 255)
+  double maxFraction = 0.0;   // the share of values allowed to differ by more
+  double maxRelative = -1.0;  // < 0: value by value
+  double percentile = 100.0;  // in (0, 100]
+};
+
+// The relative test's figures: the percentile asked for, the largest and where it is, and
+// how many pixels the reference covers.
+struct RelativeOutcome {
+  double atPercentile = 0.0, largest = 0.0;
+  int maxX = -1, maxY = -1;
+  long long pixels = 0;
 };
 
 struct CompareOutcome {
   ImageComparison values;
-  bool passed = false;  // same shape, and at most maxFraction of the values beyond maxAbs
+  bool relative = false;  // the relative test ran (thresholds.maxRelative ≥ 0, same shape)
+  RelativeOutcome errors;
+  // Same shape, and at most maxFraction of the values beyond maxAbs; or, with maxRelative,
+  // the percentile within it.
+  bool passed = false;
   bool diffWritten = false;
 };
 
 // Compares the files `a` and `b` with OpenImageIO's comparison. When they fail and
-// `diffPath` is not empty, writes the difference there (|a − b| / (2·maxAbs), clamped, as an
-// 8-bit PNG: values at the threshold show mid-grey; with maxAbs 0, one 8-bit code does),
-// through a temporary file. Throws ImageError when a file cannot be read or written.
+// `diffPath` is not empty, writes the difference there through a temporary file, as an 8-bit
+// PNG: |a − b| / (2·maxAbs), clamped (values at the threshold show mid-grey; with maxAbs 0,
+// one 8-bit code does); under the relative test each pixel's relative error / (2·maxRelative)
+// as grey (black where the reference covers nothing). Throws ImageError when a file cannot be
+// read or written.
 CompareOutcome compareImageFiles(const std::string& a, const std::string& b,
                                  const CompareThresholds& thresholds, const std::string& diffPath);
 

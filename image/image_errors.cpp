@@ -7,13 +7,53 @@
 
 namespace manylight {
 
-ImageErrors measureErrors(const Image& image, const Image& reference,
-                          const std::vector<bool>& rows) {
+namespace {
+
+void checkSameSize(const Image& image, const Image& reference) {
   if (image.width != reference.width || image.height != reference.height)
     throw ImageError("cannot compare a " + std::to_string(image.width) + "x" +
                      std::to_string(image.height) + " image with a " +
                      std::to_string(reference.width) + "x" + std::to_string(reference.height) +
                      " reference");
+}
+
+}  // namespace
+
+double relativeError(const float* image, const float* reference) {
+  double peak = 0.0, diff = 0.0;
+  for (int ch = 0; ch < 3; ++ch) {
+    peak = std::max(peak, double(reference[ch]));
+    const double d = std::abs(double(image[ch]) - double(reference[ch]));
+    diff = std::max(diff, std::isnan(d) ? HUGE_VAL : d);
+  }
+  return diff / std::max(peak, kRelativeErrorFloor);
+}
+
+RelativeErrors relativeErrors(const Image& image, const Image& reference) {
+  checkSameSize(image, reference);
+  RelativeErrors e;
+  double largest = -1.0;
+  for (int y = 0; y < reference.height; ++y) {
+    for (int x = 0; x < reference.width; ++x) {
+      if (reference.pixel(x, y)[3] <= 0.0f) continue;  // background
+      const double r = relativeError(image.pixel(x, y), reference.pixel(x, y));
+      e.sorted.push_back(r);
+      if (r > largest) largest = r, e.maxX = x, e.maxY = y;
+    }
+  }
+  std::sort(e.sorted.begin(), e.sorted.end());
+  return e;
+}
+
+double percentileOf(const std::vector<double>& sorted, double p) {
+  if (sorted.empty()) return 0.0;
+  const double rank = std::ceil(p / 100.0 * double(sorted.size()));
+  return sorted[std::size_t(std::clamp(rank, 1.0, double(sorted.size()))) - 1];
+}
+
+ImageErrors measureErrors(const Image& image, const Image& reference,
+                          const std::vector<bool>& rows) {
+  checkSameSize(image, reference);
   ImageErrors e;
   std::vector<double> relative;
   // The compared pixels' 8-bit codes / 255, packed into one row per image for OpenImageIO.
@@ -27,23 +67,21 @@ ImageErrors measureErrors(const Image& image, const Image& reference,
       if (r[3] <= 0.0f) continue;  // background
       ++e.pixels;
       if (!std::isfinite(m[0]) || !std::isfinite(m[1]) || !std::isfinite(m[2])) ++e.nonFinite;
-      double peak = 0.0, diff = 0.0;
+      double diff = 0.0;
       for (int ch = 0; ch < 3; ++ch) {
-        peak = std::max(peak, double(r[ch]));
-        // A NaN channel counts as infinitely wrong, not as equal.
         const double d = std::abs(double(m[ch]) - double(r[ch]));
         diff = std::max(diff, std::isnan(d) ? HUGE_VAL : d);
         codes[0].pixels.push_back(float(encodeSrgb8(m[ch])) / 255.0f);
         codes[1].pixels.push_back(float(encodeSrgb8(r[ch])) / 255.0f);
       }
       e.maxAbsolute = std::max(e.maxAbsolute, diff);
-      relative.push_back(diff / std::max(peak, kRelativeErrorFloor));
+      relative.push_back(relativeError(m, r));
     }
   }
   if (relative.empty()) return e;
   std::sort(relative.begin(), relative.end());
   e.maxRelative = relative.back();
-  e.p99Relative = relative[std::size_t(std::ceil(0.99 * double(relative.size()))) - 1];
+  e.p99Relative = percentileOf(relative, 99.0);
   for (RawImage<float>& c : codes) {
     c.width = int(relative.size());
     c.height = 1;

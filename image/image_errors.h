@@ -24,6 +24,23 @@ struct ImageErrors {
   double offByMoreThanOneCode = 0.0;  // share of pixels with a channel 2 or more codes off
 };
 
+// A pixel's relative error: max over channels of |image − reference|, divided by its largest
+// reference channel or kRelativeErrorFloor, whichever is larger; a NaN channel counts as
+// infinitely wrong.
+double relativeError(const float* image, const float* reference);
+
+// Every relative error of the pixels `reference` covers (alpha > 0), sorted, and where the
+// largest is (−1, −1 when none is covered): `manylight compare --max-relative`.
+struct RelativeErrors {
+  std::vector<double> sorted;
+  int maxX = -1, maxY = -1;
+};
+RelativeErrors relativeErrors(const Image& image, const Image& reference);
+
+// The p-th percentile (0 < p ≤ 100) of sorted values: the ⌈p/100 · n⌉-th smallest; 0 when
+// there are none.
+double percentileOf(const std::vector<double>& sorted, double p);
+
 // Compares `image` with `reference` (same size) over the pixels the reference covers (alpha
 // > 0) and, when `rows` is not empty, only in rows y where rows[y] is true. Throws
 // ImageError when the sizes differ or OpenImageIO fails.

@@ -120,5 +120,31 @@ TEST(BenchTools, ImageErrorsNaNAndBlackReferencesReadAsLargeErrors) {
   EXPECT_THROW(measureErrors(other, ref), ImageError);
 }
 
+TEST(BenchTools, RelativeErrorsSortThePixelsTheReferenceCoversAndFindTheLargest) {
+  Image ref = image(3, 2, 0.5f), img = ref;
+  ref.pixel(2, 1)[3] = 0.0f;  // background: never compared
+  img.pixel(2, 1)[0] = 100.0f;
+  img.pixel(1, 0)[1] = 0.6f;   // 0.1 off a largest channel of 0.5: 20%
+  img.pixel(0, 1)[2] = 0.45f;  // 10%
+  const RelativeErrors e = relativeErrors(img, ref);
+  ASSERT_EQ(e.sorted.size(), 5u);
+  EXPECT_NEAR(e.sorted.back(), 0.2, 1e-6);
+  EXPECT_NEAR(e.sorted[3], 0.1, 1e-6);
+  EXPECT_EQ(e.sorted[2], 0.0);
+  EXPECT_EQ(e.maxX, 1);
+  EXPECT_EQ(e.maxY, 0);
+  // The p-th percentile of 5 values is the ⌈5p/100⌉-th smallest.
+  EXPECT_EQ(percentileOf(e.sorted, 100.0), e.sorted[4]);
+  EXPECT_EQ(percentileOf(e.sorted, 80.0), e.sorted[3]);
+  EXPECT_EQ(percentileOf(e.sorted, 79.0), e.sorted[3]);
+  EXPECT_EQ(percentileOf(e.sorted, 60.0), e.sorted[2]);
+  EXPECT_EQ(percentileOf(e.sorted, 1e-6), e.sorted[0]);
+  EXPECT_EQ(percentileOf({}, 50.0), 0.0);
+  // A NaN channel is infinitely wrong, not equal.
+  img.pixel(0, 0)[0] = std::nanf("");
+  EXPECT_TRUE(std::isinf(relativeErrors(img, ref).sorted.back()));
+  EXPECT_THROW(relativeErrors(image(2, 2, 0.5f), ref), ImageError);
+}
+
 }  // namespace
 }  // namespace manylight::testing

@@ -120,6 +120,52 @@ TEST(CliTools, CompareAssertsARenderAgainstAStoredImage) {
   EXPECT_EQ(r.err.rfind("manylight: " + missing + ": cannot read image: ", 0), 0u) << r.err;
 }
 
+// The relative test: the second image is the reference, its background (alpha 0) is left
+// out, and the chosen percentile of the pixels' relative errors must stay within the limit.
+TEST(CliTools, CompareRelativeErrorsAgainstAReference) {
+  const fs::path dir = testFolder();
+  Image ref;
+  ref.width = 4;
+  ref.height = 1;
+  ref.rgba.assign(16, 1.0f);
+  ref.pixel(3, 0)[3] = 0.0f;  // background
+  Image img = ref;
+  img.pixel(1, 0)[0] = 1.0078125f;  // 2⁻⁷ off (exact in binary, as printed)
+  img.pixel(2, 0)[2] = 0.96875f;    // 2⁻⁵ off
+  img.pixel(3, 0)[1] = 50.0f;       // never compared
+  const std::string a = (dir / "rel_a.exr").string(), b = (dir / "rel_b.exr").string();
+  writeImage(img, a);
+  writeImage(ref, b);
+  const std::string pair = a + " " + b + ": ";
+  ProcessResult r = manylight("compare " + a + " " + b + " --max-relative 0.05");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.out, pair +
+                       "match: relative error against the second, at percentile 100: 0.03125 "
+                       "(limit 0.05); max 0.03125 at pixel (2, 0); 3 pixels compared\n");
+  r = manylight("compare " + a + " " + b + " --max-relative 0.02");
+  EXPECT_EQ(r.exitCode, 4);
+  const fs::path diff = dir / "rel_b.diff.png";
+  EXPECT_EQ(r.out, pair +
+                       "differ: relative error against the second, at percentile 100: 0.03125 "
+                       "(limit 0.02); max 0.03125 at pixel (2, 0); 3 pixels compared; "
+                       "difference: " +
+                       diff.string() + "\n");
+  // The difference: relative error / (2 · limit) as grey, the background black.
+  const Image d = readImage(diff.string());
+  ASSERT_EQ(d.width, 4);
+  EXPECT_EQ(d.pixel(0, 0)[0], 0.0f);
+  EXPECT_NEAR(d.pixel(1, 0)[0], 50.0f / 255.0f, 1e-6);   // 0.195 → code 50
+  EXPECT_NEAR(d.pixel(2, 0)[0], 199.0f / 255.0f, 1e-6);  // 0.781 → code 199
+  EXPECT_EQ(d.pixel(3, 0)[0], 0.0f);
+  // The median of the three is the pixel 2⁻⁷ off.
+  r = manylight("compare " + a + " " + b + " --max-relative 0.02 --percentile 50");
+  EXPECT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("at percentile 50: 0.0078125 (limit 0.02)"), std::string::npos) << r.out;
+  r = manylight("compare " + a + " " + b + " --percentile 50");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--percentile requires --max-relative"), std::string::npos) << r.err;
+}
+
 // libpng prints "libpng error: ..." lines of its own for a corrupt PNG before OpenImageIO
 // reports the error (one line before a texture's error, three before compare's). Each
 // error stays one line, the program's own.
