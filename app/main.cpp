@@ -186,7 +186,8 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& c) {
           ->add_option("--max-relative", c.thresholds.maxRelative,
                        "Instead of value by value: B is the reference, and a pixel it covers "
                        "(alpha > 0) may be off by this share of its largest channel "
-                       "(max over channels of |A - B| / max of B)")
+                       "(max over channels of |A - B| / max of B; 8-bit files are read as "
+                       "code/255, so compare radiance as EXR)")
           ->check(CLI::Range(0.0, 1e30));
   compare
       ->add_option("--percentile", c.thresholds.percentile,
