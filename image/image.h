@@ -48,9 +48,9 @@ std::vector<std::uint8_t> displayCodes(const Image& image, const Display& displa
 // Throws ImageError unless `path` names a format writeImage writes (.png, .exr).
 void checkOutputPath(const std::string& path);
 
-// Reads an image as float RGBA (8-bit files as their codes / 255, not decoded). Throws
-// ImageError.
-Image readImage(const std::string& path);
+// Reads an image as float RGBA (8-bit files as their codes / 255, not decoded), and where
+// `channels` is given, the file's channel count into it. Throws ImageError.
+Image readImage(const std::string& path, int* channels = nullptr);
 
 // `manylight compare`: two image files, value by value against two thresholds, or with
 // maxRelative ≥ 0 pixel by pixel against the second as the reference (relativeError of

@@ -161,6 +161,15 @@ TEST(CliTools, CompareRelativeErrorsAgainstAReference) {
   r = manylight("compare " + a + " " + b + " --max-relative 0.02 --percentile 50");
   EXPECT_EQ(r.exitCode, 0) << r.out;
   EXPECT_NE(r.out.find("at percentile 50: 0.0078125 (limit 0.02)"), std::string::npos) << r.out;
+  // Another size differs, as value by value.
+  Image wide = ref;
+  wide.width = 2;
+  wide.height = 2;
+  const std::string c = (dir / "rel_c.exr").string();
+  writeImage(wide, c);
+  r = manylight("compare " + a + " " + c + " --max-relative 0.05");
+  EXPECT_EQ(r.exitCode, 4);
+  EXPECT_EQ(r.out, a + " " + c + ": differ: 4x1 with 4 channels against 2x2 with 4\n");
   r = manylight("compare " + a + " " + b + " --percentile 50");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("--percentile requires --max-relative"), std::string::npos) << r.err;
