@@ -55,12 +55,6 @@ int gather(const GBuffer& camera, const GBuffer& rsm) {
   return passes;
 }
 
-bool sameLight(const Light& a, const Light& b) {
-  return a.type == b.type && a.position == b.position && a.direction == b.direction &&
-         a.colour == b.colour && a.intensity == b.intensity && a.range == b.range &&
-         a.innerConeAngle == b.innerConeAngle && a.outerConeAngle == b.outerConeAngle;
-}
-
 // Map texels that reflect flux (flux.w, the patch area, is non-zero).
 long long reflectingTexels(const std::vector<float>& flux) {
   long long n = 0;
@@ -136,10 +130,11 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   const std::vector<float> normal = camera.read(GBuffer::kNormal);
   glBindVertexArray(emptyVao_.id());
   const RsmSamples samples = sampleRsmChoice(position, normal, lights.size());
+  const std::vector<double> flux = flux_.measure(gpu, lights, samples);
   const RsmChoice choice =
-      chooseRsmLights(lights, flux_.measure(gpu, lights, samples), settings.rsmLights, mapLights_);
+      chooseRsmLights(lights, fluxHistory_.add(lights, flux), settings.rsmLights, mapLights_);
   stats.candidates = choice.candidates;
-  stats.fluxShare = choice.fluxShare;
+  stats.fluxShare = fluxShare(choice.lights, flux);  // of this view's flux
   stats.chooseMs = msSince(start);
   start = Clock::now();
   stats.mapsKept = sameMaps(lights, choice);

@@ -43,7 +43,7 @@ struct IndirectStats {
   bool mapsKept = false;    // the maps were the last frame's (IndirectLight::light)
   int candidates = 0;       // spot and directional lights
   long long rsmTexels = 0;  // map texels that reflect flux, over all maps
-  double fluxShare = 1.0;   // RsmChoice::fluxShare
+  double fluxShare = 1.0;   // the chosen lights' share of this frame's flux (fluxShare)
   int passes = 0;           // gather passes
   double chooseMs = 0.0;    // reading the G-buffer back and choosing the lights
   double rsmMs = 0.0;       // rendering the maps and their flux
@@ -100,6 +100,7 @@ class IndirectLight {
   std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches
   NearField near_;
   LightFlux flux_;
+  RsmFluxHistory fluxHistory_;
 };
 
 }  // namespace manylight

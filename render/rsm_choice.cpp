@@ -59,11 +59,28 @@ RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<do
     if (std::find(choice.lights.begin(), choice.lights.end(), candidates[j]) == choice.lights.end())
       choice.lights.push_back(candidates[j]);
   }
-  const double total = std::accumulate(flux.begin(), flux.end(), 0.0);
-  double chosen = 0.0;
-  for (int i : choice.lights) chosen += flux[std::size_t(i)];
-  choice.fluxShare = total > 0.0 ? chosen / total : 1.0;
+  choice.fluxShare = fluxShare(choice.lights, flux);
   return choice;
+}
+
+double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux) {
+  const double total = std::accumulate(flux.begin(), flux.end(), 0.0);
+  double sum = 0.0;
+  for (int i : chosen) sum += flux[std::size_t(i)];
+  return total > 0.0 ? sum / total : 1.0;
+}
+
+const std::vector<double>& RsmFluxHistory::add(const std::vector<Light>& lights,
+                                               const std::vector<double>& flux) {
+  const bool same = lights.size() == lights_.size() && sum_.size() == flux.size() &&
+                    std::equal(lights.begin(), lights.end(), lights_.begin(), sameLight);
+  if (!same) {
+    lights_ = lights;
+    sum_ = flux;
+    return sum_;
+  }
+  for (std::size_t i = 0; i < sum_.size(); ++i) sum_[i] = kRsmChoiceMemory * sum_[i] + flux[i];
+  return sum_;
 }
 
 std::vector<double> LightFlux::measure(const GpuScene& gpu, const std::vector<Light>& lights,

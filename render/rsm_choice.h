@@ -47,6 +47,29 @@ RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<do
                           int count, const std::vector<int>& previous = {});
 inline constexpr double kRsmChoiceKeep = 0.5;
 
+// The share of Σ `flux` that the `chosen` lights have (RsmChoice::fluxShare); 1 where the sum
+// is 0.
+double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux);
+
+// The flux the frames so far measured, frame after frame of one renderer: each frame's flux
+// counts kRsmChoiceMemory^age, so that the choice (chooseRsmLights) ranks lights by what they
+// sent into the last few views rather than into one. A light of small reach meets few of a
+// frame's samples, or none, and one frame's measure ranks it by the samples' placement; a
+// playback whose choice followed that would render new maps and caches every frame, and its
+// indirect light would change with them. The sum starts again whenever any light changes.
+class RsmFluxHistory {
+ public:
+  // Adds a frame's `flux` (per light of `lights`, scene order) and returns the sum.
+  const std::vector<double>& add(const std::vector<Light>& lights,
+                                 const std::vector<double>& flux);
+
+ private:
+  std::vector<Light> lights_;
+  std::vector<double> sum_;
+};
+// Weight of the frame before against this one's: a frame's flux counts about ten frames.
+inline constexpr double kRsmChoiceMemory = 0.9;
+
 // The flux of every light on the GPU.
 class LightFlux {
  public:

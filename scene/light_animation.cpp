@@ -43,12 +43,6 @@ void settleCone(Light& l) {
   l.innerConeAngle = std::nextafter(l.outerConeAngle, 0.0f);
 }
 
-bool sameLight(const Light& a, const Light& b) {
-  return a.type == b.type && a.position == b.position && a.direction == b.direction &&
-         a.colour == b.colour && a.intensity == b.intensity && a.range == b.range &&
-         a.innerConeAngle == b.innerConeAngle && a.outerConeAngle == b.outerConeAngle;
-}
-
 Light sampleLight(const AnimatedLight& a, const Light& rest, float seconds) {
   Light l = rest;
   if (!a.chain.empty()) gltf::placeLight(l, animatedChain(a.chain, seconds));

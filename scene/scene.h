@@ -30,6 +30,13 @@ struct Light {
 // zero from that distance on (scene/shading_model.h's window).
 inline bool isRanged(const Light& l) { return l.type != LightType::Directional && l.range > 0.0f; }
 
+// Whether two lights are the same in every value that lights a scene.
+inline bool sameLight(const Light& a, const Light& b) {
+  return a.type == b.type && a.position == b.position && a.direction == b.direction &&
+         a.colour == b.colour && a.intensity == b.intensity && a.range == b.range &&
+         a.innerConeAngle == b.innerConeAngle && a.outerConeAngle == b.outerConeAngle;
+}
+
 struct Texture {
   int width = 0;
   int height = 0;

@@ -27,6 +27,25 @@ TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 3}).lights, (std::vector<int>{3, 0}));
 }
 
+// Each frame's flux counts kRsmChoiceMemory^age, until a light changes: then the sum starts
+// again from that frame's flux. fluxShare is the chosen lights' part of a flux's sum.
+TEST(Indirect, TheChoiceRanksByTheFluxOfTheLastFrames) {
+  std::vector<Light> lights(3);
+  for (Light& l : lights) l.type = LightType::Spot;
+  RsmFluxHistory history;
+  EXPECT_EQ(history.add(lights, {4.0, 0.0, 1.0}), (std::vector<double>{4.0, 0.0, 1.0}));
+  const std::vector<double> second = history.add(lights, {0.0, 2.0, 1.0});
+  EXPECT_DOUBLE_EQ(second[0], 4.0 * kRsmChoiceMemory);
+  EXPECT_DOUBLE_EQ(second[1], 2.0);
+  EXPECT_DOUBLE_EQ(second[2], 1.0 * kRsmChoiceMemory + 1.0);
+  // Light 0, out of this frame's samples, keeps its map over light 1.
+  EXPECT_EQ(chooseRsmLights(lights, second, 1, {0}).lights, (std::vector<int>{0}));
+  lights[2].intensity = 2.0f;
+  EXPECT_EQ(history.add(lights, {0.0, 2.0, 1.0}), (std::vector<double>{0.0, 2.0, 1.0}));
+  EXPECT_DOUBLE_EQ(fluxShare({1}, {0.0, 2.0, 1.0}), 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(fluxShare({1}, {0.0, 0.0, 0.0}), 1.0);
+}
+
 // An 8 × 8 map: the lower-left block flat on z = 0 with equal flux, the lower-right one
 // with its right half facing +x, the top two reflecting nothing but one texel.
 TEST(Indirect, ClustersHoldTheirTexels) {
