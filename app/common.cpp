@@ -250,6 +250,7 @@ nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectSta
           {"cache_cell", s.cacheCell},
           {"allocate_ms", s.allocateMs},
           {"near_passes", s.nearPasses},
+          {"near_clusters", s.nearClusters},
           {"near_ms", s.nearMs},
           {"interpolate_ms", s.interpolateMs}};
 }

@@ -3,43 +3,85 @@
 // 1 − farWeight (the caches carry the rest), added (blend ONE, ONE) to the radiance target.
 // r is the larger of the texel's map radius and kNearCells cells of the pixel's cascade; in a
 // transition band the near light of both cascades is blended as the caches are. The texels
-// are found in the cascade's grid, the cells within 2r of the pixel, and of those only the
-// [uFirst, uFirst + uCount) th in the cells' order are read: one pass stays under
-// llvmpipe's 65,535 loop iterations.
+// come in entries, clusters or texels alone, found in the cascade's grid: the cells within
+// the grid's reach of the pixel, and of those only the [uFirst[k], uFirst[k] + uCount[k]) th
+// entries in the cells' order are read, so one pass stays under llvmpipe's 65,535 loop
+// iterations. A pixel farther from a flat cluster than kRsmClusterDistance of its radii takes
+// its light as one texel's at its centre; nearer, it sums the cluster's texels.
 uniform sampler2D uPosition;
 uniform sampler2D uNormal;
 uniform sampler2D uAlbedo;
-// Per cascade, every texel ordered by the cascade's grid cell:
-uniform sampler2D uTexelPosition;  // xyz, the map's near radius
-uniform sampler2D uTexelNormal;    // xyz, patch area
-uniform sampler2D uTexelFlux;      // rgb
-uniform sampler3D uGrid;           // per cascade's cell (stacked in z): its first texel, count
+// Per cascade, its entries ordered by the cascade's grid cell, then the clusters' texels,
+// kRsmClusterEdge² a cluster (those that reflect nothing of flux 0), each a record of:
+uniform sampler2D uEntryCentre;  // xyz, radius (0: a texel alone)
+// Mean unit normal; a texel's area, or a cluster's first texel record (a cluster counts as
+// one texel only from kRsmClusterDistance radii, where its area's softening is left out)
+uniform sampler2D uEntryNormal;
+// Σ flux, the map's near radius; negative where the cluster's texels do not share its facing
+uniform sampler2D uEntryFlux;
+uniform sampler3D uGrid;           // per cascade's cell (stacked in z): its first entry, count
 uniform sampler3D uPlanes;         // per cell: the plane its texels share (n, n·p), or 0
 uniform vec3 uGridOrigin;
 uniform float uGridCell[8];
-uniform float uGridReach[8];  // per cascade, twice the largest near radius: no texel reaches further
+uniform float uGridReach[8];  // per cascade, the farthest an entry's light reaches
 uniform ivec3 uGridCells[8];
 uniform int uGridFirstZ[8];
-uniform int uFirst;
-uniform int uCount;
+uniform int uFirst[8];
+uniform int uCount[8];
 
 out vec4 oRadiance;
 
-vec3 texelLight(int i, vec3 x, vec3 n, float cascadeRadius) {
-  int width = textureSize(uTexelPosition, 0).x;
-  ivec2 t = ivec2(i % width, i / width);
-  vec4 pr = texelFetch(uTexelPosition, t, 0);
-  float r = max(pr.w, cascadeRadius);
-  vec3 w = pr.xyz - x;
-  float d2 = max(dot(w, w), kMinDistanceSquared);
-  if (d2 >= 4.0 * r * r) return vec3(0.0);
-  vec4 na = texelFetch(uTexelNormal, t, 0);
-  float c = max(dot(n, w), 0.0) * max(-dot(na.xyz, w), 0.0);
-  float near = 1.0 - farWeight(sqrt(d2), r);
-  return texelFetch(uTexelFlux, t, 0).rgb * (near * c / (d2 * (d2 + na.w / kPi)));
+ivec2 texelAt(sampler2D s, int i) {
+  int width = textureSize(s, 0).x;
+  return ivec2(i % width, i / width);
 }
 
-// Σ over the near texels of cascade k's grid: the irradiance times π.
+// The near light of a texel (flux.rgb, area flux.w) at y, of normal nt, arriving at x of
+// normal n for a near radius r.
+vec3 texelLight(vec4 flux, vec3 y, vec3 nt, vec3 x, vec3 n, float r) {
+  vec3 w = y - x;
+  float d2 = max(dot(w, w), kMinDistanceSquared);
+  if (d2 >= 4.0 * r * r) return vec3(0.0);
+  float c = max(dot(n, w), 0.0) * max(-dot(nt, w), 0.0);
+  float near = 1.0 - farWeight(sqrt(d2), r);
+  return flux.rgb * (near * c / (d2 * (d2 + flux.w / kPi)));
+}
+
+// Σ over cell entries [first, last) from `base`. Each iteration reads one record, an entry or
+// a texel of the cluster being summed, and adds at most one texel's light: straight-line code
+// in one loop, since llvmpipe runs the body of a branch or inner loop that no lane takes
+// for every entry all the same.
+vec3 cellLight(int base, int first, int last, vec3 x, vec3 n, float cascadeRadius) {
+  vec3 sum = vec3(0.0);
+  int j = first;
+  int texel = 0, texels = 0;  // of the cluster being summed texel by texel
+  while (j < last) {
+    ivec2 e = texelAt(uEntryCentre, texels > 0 ? texel : base + j);
+    vec4 centre = texelFetch(uEntryCentre, e, 0);
+    vec4 flux = texelFetch(uEntryFlux, e, 0);
+    vec4 na = texelFetch(uEntryNormal, e, 0);
+    float r = max(abs(flux.w), cascadeRadius);
+    float d = length(centre.xyz - x);
+    bool cluster = centre.w > 0.0;
+    // A cluster within reach that is not flat, or nearer than kRsmClusterDistance radii.
+    bool expand = texels == 0 && cluster && d - centre.w < 2.0 * r &&
+                  (flux.w < 0.0 || d < kRsmClusterDistance * centre.w);
+    if (!expand)
+      sum += texelLight(vec4(flux.rgb, cluster ? 0.0 : na.w), centre.xyz, na.xyz, x, n, r);
+    if (expand) {
+      texel = int(na.w);
+      texels = kRsmClusterEdge * kRsmClusterEdge;
+    } else if (texels > 0) {
+      ++texel;
+      if (--texels == 0) ++j;
+    } else {
+      ++j;
+    }
+  }
+  return sum;
+}
+
+// Σ over the near entries of cascade k's grid: the irradiance times π.
 vec3 nearLight(int k, vec3 x, vec3 n) {
   float cascadeRadius = kNearCells * uCell[k];
   ivec3 lo = max(ivec3(floor((x - uGridReach[k] - uGridOrigin) / uGridCell[k])), ivec3(0));
@@ -67,10 +109,8 @@ vec3 nearLight(int k, vec3 x, vec3 n) {
           vec4 plane = texelFetch(uPlanes, cell, 0);
           if (plane.xyz != vec3(0.0) && dot(plane.xyz, x) - plane.w <= tolerance) count = 0;
         }
-        int first = max(uFirst - seen, 0), last = min(uFirst + uCount - seen, count);
-        for (int j = first; j < last; ++j) {
-          sum += texelLight(int(range.x) + j, x, n, cascadeRadius);
-        }
+        int first = max(uFirst[k] - seen, 0), last = min(uFirst[k] + uCount[k] - seen, count);
+        sum += cellLight(int(range.x), first, last, x, n, cascadeRadius);
         seen += int(range.y);
       }
     }

@@ -112,9 +112,10 @@ void IndirectLight::renderMaps(const Scene& scene, const GpuScene& gpu,
     const std::vector<float> normal = m.rsm->read(GBuffer::kNormal);
     m.texels = reflectingTexels(flux);
     m.nearRadius = nearRadius(flux);
-    near_.add(position, normal, flux, m.nearRadius);
+    const RsmClusters clusters = clusterRsm(position, normal, flux, rsmSize_);
+    near_.add(position, normal, flux, clusters, m.nearRadius);
     if (!m.clusters) m.clusters = std::make_unique<RsmClusterTextures>();
-    m.clusters->upload(clusterRsm(position, normal, flux, rsmSize_));
+    m.clusters->upload(clusters);
   }
 }
 
@@ -172,6 +173,7 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     start = Clock::now();
     near_.upload(caches_->grid());
     stats.nearPasses = near_.draw(camera);
+    stats.nearClusters = near_.clusters();
     glFinish();
     stats.nearMs = msSince(start);
     start = Clock::now();

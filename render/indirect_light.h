@@ -56,6 +56,7 @@ struct IndirectStats {
   float cacheCell = 0.0f;      // the smallest cascade's cell edge
   double allocateMs = 0.0;     // allocated on the CPU and uploaded
   int nearPasses = 0;          // near-field passes (render/near_field.h)
+  long long nearClusters = 0;  // NearField::clusters
   double nearMs = 0.0;         // the near field binned, uploaded and gathered per pixel
   double interpolateMs = 0.0;  // the per-pixel interpolation pass
 };

@@ -23,28 +23,51 @@ float nearRadius(const std::vector<float>& flux) {
 }
 
 void NearField::clear() {
+  clusterEntries_ = 0;
   texels_.clear();
+  clusters_.clear();
   binned_.clear();
 }
 
 void NearField::add(const std::vector<float>& position, const std::vector<float>& normal,
-                    const std::vector<float>& flux, float radius) {
+                    const std::vector<float>& flux, const RsmClusters& clusters, float radius) {
   binned_.clear();
-  for (std::size_t i = 0; i + 3 < flux.size(); i += 4) {
-    if (flux[i + 3] == 0.0f) continue;
-    texels_.push_back({glm::vec4(position[i], position[i + 1], position[i + 2], radius),
-                       glm::vec4(normal[i], normal[i + 1], normal[i + 2], flux[i + 3]),
-                       glm::vec4(flux[i], flux[i + 1], flux[i + 2], 0.0f)});
-  }
+  const int size = clusters.size * kRsmClusterEdge;
+  for (int by = 0; by < clusters.size; ++by)
+    for (int bx = 0; bx < clusters.size; ++bx) {
+      const std::size_t at = std::size_t(by) * std::size_t(clusters.size) + std::size_t(bx);
+      if (clusters.centre[at].w < 0.0f) continue;  // reflects nothing
+      const glm::vec4 n = clusters.normal[at], f = clusters.flux[at];
+      Entry e{clusters.centre[at],
+              glm::vec4(glm::vec3(n), f.w),
+              glm::vec4(glm::vec3(f), n.w > 0.0f ? radius : -radius),
+              int(texels_.size()),
+              0,
+              int(clusters_.size())};
+      for (int y = by * kRsmClusterEdge; y < (by + 1) * kRsmClusterEdge; ++y)
+        for (int x = bx * kRsmClusterEdge; x < (bx + 1) * kRsmClusterEdge; ++x) {
+          const std::size_t t = 4 * (std::size_t(y) * std::size_t(size) + std::size_t(x));
+          if (flux[t + 3] == 0.0f) continue;
+          texels_.push_back({glm::vec4(position[t], position[t + 1], position[t + 2], 0.0f),
+                             glm::vec4(normal[t], normal[t + 1], normal[t + 2], flux[t + 3]),
+                             glm::vec4(flux[t], flux[t + 1], flux[t + 2], 0.0f)});
+          ++e.count;
+        }
+      clusters_.push_back(e);
+    }
 }
 
 namespace {
 
 constexpr int kTextureWidth = 1024;
 
-void upload2d(const gl::Texture& t, const float* texels, int height) {
+void upload2d(const gl::Texture& t, const std::vector<glm::vec4>& texels) {
+  const int height = int((texels.size() + kTextureWidth - 1) / kTextureWidth);
+  std::vector<glm::vec4> padded(std::size_t(std::max(height, 1)) * kTextureWidth, glm::vec4(0.0f));
+  std::copy(texels.begin(), texels.end(), padded.begin());
   glBindTexture(GL_TEXTURE_2D, t.id());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTextureWidth, height, 0, GL_RGBA, GL_FLOAT, texels);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTextureWidth, std::max(height, 1), 0, GL_RGBA,
+               GL_FLOAT, glm::value_ptr(padded[0]));
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
@@ -58,83 +81,116 @@ void upload3d(const gl::Texture& t, glm::ivec3 size, const std::vector<glm::vec4
   glBindTexture(GL_TEXTURE_3D, 0);
 }
 
+// `list`: the indices of `points` ordered by their cell in the grid of `cells` cells of edge
+// `cell` from `lo`. Returns per cell its first entry in `list` and its count.
+std::vector<glm::vec2> binPoints(const std::vector<glm::vec3>& points, glm::vec3 lo, float cell,
+                                 glm::ivec3 cells, std::vector<int>& list) {
+  const std::size_t n = points.size();
+  std::vector<int> home(n);
+  std::vector<glm::vec2> r(std::size_t(cells.x * cells.y * cells.z), glm::vec2(0.0f));
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::ivec3 c =
+        glm::clamp(glm::ivec3(glm::floor((points[i] - lo) / cell)), glm::ivec3(0), cells - 1);
+    home[i] = (c.z * cells.y + c.y) * cells.x + c.x;
+    r[std::size_t(home[i])].y += 1.0f;
+  }
+  float first = 0.0f;
+  for (glm::vec2& range : r) {
+    range.x = first;
+    first += range.y;
+  }
+  list.assign(n, 0);
+  std::vector<float> next(r.size());
+  for (std::size_t c = 0; c < r.size(); ++c) next[c] = r[c].x;
+  for (std::size_t i = 0; i < n; ++i) list[std::size_t(next[std::size_t(home[i])]++)] = int(i);
+  return r;
+}
+
+// Bins `points` (from `lo` to `hi`) as binPoints does in cells of edge `reach`, or of half
+// that where cells of `reach` would hold more than kNearEntriesPerCell points on average.
+// Returns the ranges, and the cells' edge and count per axis.
+std::vector<glm::vec2> binCascade(const std::vector<glm::vec3>& points, glm::vec3 lo, glm::vec3 hi,
+                                  float reach, std::vector<int>& list, float& cell,
+                                  glm::ivec3& cells) {
+  const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  std::vector<glm::vec2> r;
+  for (float perReach : {1.0f, 2.0f}) {
+    cell = std::max({reach / perReach, extent / float(kNearGridCells - 1), 1e-6f});
+    cells = glm::clamp(glm::ivec3(glm::floor((hi - lo) / cell)) + 1, glm::ivec3(1),
+                       glm::ivec3(kNearGridCells));
+    r = binPoints(points, lo, cell, cells, list);
+    std::size_t occupied = 0;
+    for (const glm::vec2& range : r) occupied += range.y > 0.0f;
+    if (points.size() <= kNearEntriesPerCell * occupied) break;
+  }
+  return r;
+}
+
+// The passes over one cascade's `entries` in their cells' order, each of at most
+// kNearTexelsPerPass loop iterations: per pass, its first entry and the count.
+void splitPasses(const std::vector<int>& cost, std::vector<int>& first, std::vector<int>& count) {
+  int sum = 0;
+  for (std::size_t i = 0; i < cost.size(); ++i) {
+    if (first.empty() || sum + cost[i] > kNearTexelsPerPass) {
+      first.push_back(int(i));
+      count.push_back(0);
+      sum = 0;
+    }
+    sum += cost[i];
+    ++count.back();
+  }
+}
+
 }  // namespace
+
+// The entries of cascade k (cells of edge `cell`): each cluster, or where its radius passes
+// kNearClusterSpread · r, each of its texels alone.
+std::vector<NearField::Entry> NearField::cascadeEntries(float cell) const {
+  std::vector<Entry> out;
+  for (const Entry& c : clusters_) {
+    const float r = std::max(c.mapRadius(), kNearCells * cell);
+    if (c.centreRadius.w <= kNearClusterSpread * r) {
+      out.push_back(c);
+      continue;
+    }
+    for (int i = c.first; i < c.first + c.count; ++i) {
+      const Texel& t = texels_[std::size_t(i)];
+      out.push_back({glm::vec4(glm::vec3(t.position), 0.0f), t.normalArea,
+                     glm::vec4(glm::vec3(t.flux), c.mapRadius()), i, 1, c.cluster});
+    }
+  }
+  return out;
+}
 
 // Per cell, the plane (unit normal, offset n·p) all its texels lie in within `tolerance`, or
 // 0 where they do not share one: a pixel in that plane or behind it gets no light from them,
 // since each sends its light only to the side it faces, so it skips the cell.
-std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Texel>& texels,
-                                             const std::vector<float>& lists,
+std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
+                                             const std::vector<int>& list,
                                              const std::vector<glm::vec2>& ranges,
-                                             float tolerance) {
+                                             float tolerance) const {
   std::vector<glm::vec4> planes(ranges.size(), glm::vec4(0.0f));
   for (std::size_t c = 0; c < ranges.size(); ++c) {
     const std::size_t first = std::size_t(ranges[c].x), count = std::size_t(ranges[c].y);
     if (count == 0) continue;
-    const Texel& t0 = texels[std::size_t(lists[first])];
+    const Texel& t0 = texels_[std::size_t(entries[std::size_t(list[first])].first)];
     const glm::vec3 n = glm::normalize(glm::vec3(t0.normalArea));
-    const float offset = glm::dot(n, glm::vec3(t0.positionRadius));
+    const float offset = glm::dot(n, glm::vec3(t0.position));
     bool shared = true;
-    for (std::size_t j = first + 1; shared && j < first + count; ++j) {
-      const Texel& t = texels[std::size_t(lists[j])];
-      shared = glm::dot(glm::vec3(t.normalArea), n) > 0.9999f &&
-               std::abs(glm::dot(n, glm::vec3(t.positionRadius)) - offset) <= tolerance;
+    for (std::size_t j = first; shared && j < first + count; ++j) {
+      const Entry& e = entries[std::size_t(list[j])];
+      for (int i = e.first; shared && i < e.first + e.count; ++i) {
+        const Texel& t = texels_[std::size_t(i)];
+        shared = glm::dot(glm::vec3(t.normalArea), n) > 0.9999f &&
+                 std::abs(glm::dot(n, glm::vec3(t.position)) - offset) <= tolerance;
+      }
     }
     if (shared) planes[c] = glm::vec4(n, offset);
   }
   return planes;
 }
 
-// Appends to `lists` the indices of `texels` ordered by their cell in the grid of `cells`
-// cells of edge `cell` from `lo`; returns per cell its first entry in lists and its count.
-std::vector<glm::vec2> NearField::binTexels(const std::vector<Texel>& texels, glm::vec3 lo,
-                                            float cell, glm::ivec3 cells,
-                                            std::vector<float>& lists) {
-  const std::size_t n = texels.size();
-  std::vector<int> home(n);
-  std::vector<glm::vec2> r(std::size_t(cells.x * cells.y * cells.z), glm::vec2(0.0f));
-  for (std::size_t i = 0; i < n; ++i) {
-    const glm::ivec3 c =
-        glm::clamp(glm::ivec3(glm::floor((glm::vec3(texels[i].positionRadius) - lo) / cell)),
-                   glm::ivec3(0), cells - 1);
-    home[i] = (c.z * cells.y + c.y) * cells.x + c.x;
-    r[std::size_t(home[i])].y += 1.0f;
-  }
-  float first = float(lists.size());
-  for (glm::vec2& range : r) {
-    range.x = first;
-    first += range.y;
-  }
-  lists.resize(lists.size() + n);
-  std::vector<float> next(r.size());
-  for (std::size_t c = 0; c < r.size(); ++c) next[c] = r[c].x;
-  for (std::size_t i = 0; i < n; ++i) lists[std::size_t(next[std::size_t(home[i])]++)] = float(i);
-  return r;
-}
-
-// Bins `texels` (from `lo` to `hi`) as binTexels does in cells of edge `reach`, or of half
-// that where cells of `reach` would hold more than kNearTexelsPerCell texels on average.
-// Returns the ranges, and the cells' edge and count per axis.
-std::vector<glm::vec2> NearField::binCascade(const std::vector<Texel>& texels, glm::vec3 lo,
-                                             glm::vec3 hi, float reach, std::vector<float>& lists,
-                                             float& cell, glm::ivec3& cells) {
-  const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  const std::size_t listed = lists.size();
-  std::vector<glm::vec2> r;
-  for (float perReach : {1.0f, 2.0f}) {
-    lists.resize(listed);
-    cell = std::max({reach / perReach, extent / float(kNearGridCells - 1), 1e-6f});
-    cells = glm::clamp(glm::ivec3(glm::floor((hi - lo) / cell)) + 1, glm::ivec3(1),
-                       glm::ivec3(kNearGridCells));
-    r = binTexels(texels, lo, cell, cells, lists);
-    std::size_t occupied = 0;
-    for (const glm::vec2& range : r) occupied += range.y > 0.0f;
-    if (texels.size() <= kNearTexelsPerCell * occupied) break;
-  }
-  return r;
-}
-
-// Per cascade's cell, stacked in z in volumes of `size`: its first texel and their count
+// Per cascade's cell, stacked in z in volumes of `size`: its first entry and their count
 // (grid_), and cellPlanes (planes_).
 void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
                             const std::vector<std::vector<glm::vec4>>& planes) {
@@ -159,83 +215,124 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
   upload3d(planes_, size, planeVolume);
 }
 
+// The entries of every cascade, in their cells' order, then the texels of the clusters as
+// records of their own, kRsmClusterEdge² a cluster.
+void NearField::uploadEntries(const std::vector<Entry>& ordered) {
+  constexpr int kSlots = kRsmClusterEdge * kRsmClusterEdge;
+  std::vector<glm::vec4> centres, normals, fluxes;
+  for (const Entry& e : ordered) {
+    centres.push_back(e.centreRadius);
+    const bool cluster = e.centreRadius.w > 0.0f;
+    const float firstRecord = float(ordered.size() + std::size_t(e.cluster) * kSlots);
+    normals.push_back(glm::vec4(glm::vec3(e.normalArea), cluster ? firstRecord : e.normalArea.w));
+    fluxes.push_back(e.fluxRadius);
+  }
+  for (const Entry& c : clusters_) {
+    for (int i = c.first; i < c.first + c.count; ++i) {
+      const Texel& t = texels_[std::size_t(i)];
+      centres.push_back(glm::vec4(glm::vec3(t.position), 0.0f));
+      normals.push_back(t.normalArea);
+      fluxes.push_back(glm::vec4(glm::vec3(t.flux), c.mapRadius()));
+    }
+    for (int i = c.count; i < kSlots; ++i) {
+      centres.push_back(glm::vec4(0.0f));
+      normals.push_back(glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+      fluxes.push_back(glm::vec4(0.0f, 0.0f, 0.0f, c.mapRadius()));
+    }
+  }
+  upload2d(centres_, centres);
+  upload2d(normals_, normals);
+  upload2d(fluxes_, fluxes);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
 void NearField::upload(const CacheGrid& grid) {
   cascades_ = grid;
-  uploaded_ = int(texels_.size());
   // The bins depend on the texels and the cascades' cells only, not on where the camera is.
   if (texels_.empty() || binned_ == grid.cell) return;
   binned_ = grid.cell;
-  glm::vec3 lo(texels_[0].positionRadius), hi = lo;
+  glm::vec3 lo(clusters_[0].centreRadius), hi = lo;
   float mapRadius = 0.0f;
-  for (const Texel& t : texels_) {
-    lo = glm::min(lo, glm::vec3(t.positionRadius));
-    hi = glm::max(hi, glm::vec3(t.positionRadius));
-    mapRadius = std::max(mapRadius, t.positionRadius.w);
+  for (const Entry& c : clusters_) {
+    lo = glm::min(lo, glm::vec3(c.centreRadius));
+    hi = glm::max(hi, glm::vec3(c.centreRadius));
+    mapRadius = std::max(mapRadius, c.mapRadius());
   }
   origin_ = lo;
-  std::vector<float> lists;                    // per cascade, the texel indices ordered by cell
-  std::vector<std::vector<glm::vec2>> ranges;  // per cascade, per cell: first in lists, count
+  clusterEntries_ = 0;
+  std::vector<Entry> ordered;                  // every cascade's entries in its cells' order
+  std::vector<std::vector<glm::vec2>> ranges;  // per cascade, per cell: first entry, count
   std::vector<std::vector<glm::vec4>> planes;  // per cascade, per cell: cellPlanes
-  cell_.clear();
-  reach_.clear();
-  cells_.clear();
-  firstZ_.clear();
+  cell_.clear(), reach_.clear(), cells_.clear(), firstZ_.clear();
+  std::vector<std::vector<int>> first, count;  // per cascade, per pass
   glm::ivec3 size(1, 1, 0);
   for (int k = 0; k < grid.cascades; ++k) {
-    const float radius = std::max(mapRadius, kNearCells * grid.cell[std::size_t(k)]);
+    const std::vector<Entry> entries = cascadeEntries(grid.cell[std::size_t(k)]);
+    std::vector<glm::vec3> points;
+    float spread = 0.0f;
+    for (const Entry& e : entries) {
+      points.push_back(glm::vec3(e.centreRadius));
+      spread = std::max(spread, e.centreRadius.w);
+    }
+    const float reach = 2.0f * std::max(mapRadius, kNearCells * grid.cell[std::size_t(k)]) + spread;
     float cell = 0.0f;
     glm::ivec3 cells;
-    std::vector<glm::vec2> r = binCascade(texels_, lo, hi, 2.0f * radius, lists, cell, cells);
-    planes.push_back(cellPlanes(texels_, lists, r, kPlaneTolerance * cell));
-    cell_.push_back(cell);
-    reach_.push_back(2.0f * radius);
-    cells_.push_back(cells);
+    std::vector<int> list;
+    std::vector<glm::vec2> r = binCascade(points, lo, hi, reach, list, cell, cells);
+    planes.push_back(cellPlanes(entries, list, r, kPlaneTolerance * cell));
+    std::vector<int> cost;
+    for (int i : list) {
+      const bool cluster = entries[std::size_t(i)].centreRadius.w > 0.0f;
+      cost.push_back(1 + (cluster ? kRsmClusterEdge * kRsmClusterEdge : 0));
+      clusterEntries_ += cluster;
+    }
+    first.emplace_back(), count.emplace_back();
+    splitPasses(cost, first.back(), count.back());
+    for (glm::vec2& range : r) range.x += float(ordered.size());
+    for (int i : list) ordered.push_back(entries[std::size_t(i)]);
+    cell_.push_back(cell), reach_.push_back(reach), cells_.push_back(cells);
     firstZ_.push_back(size.z);
     size = glm::ivec3(std::max(size.x, cells.x), std::max(size.y, cells.y), size.z + cells.z);
     ranges.push_back(std::move(r));
   }
-  // The texels themselves in the lists' order, so a pixel reads a cell's texels in a row.
-  const int height = int((lists.size() + kTextureWidth - 1) / kTextureWidth);
-  std::vector<glm::vec4> a(std::size_t(height) * kTextureWidth), b(a.size()), c(a.size());
-  for (std::size_t l = 0; l < lists.size(); ++l) {
-    const Texel& t = texels_[std::size_t(lists[l])];
-    a[l] = t.positionRadius;
-    b[l] = t.normalArea;
-    c[l] = t.flux;
-  }
-  upload2d(positions_, glm::value_ptr(a[0]), height);
-  upload2d(normals_, glm::value_ptr(b[0]), height);
-  upload2d(fluxes_, glm::value_ptr(c[0]), height);
-  glBindTexture(GL_TEXTURE_2D, 0);
+  std::size_t passes = 0;
+  for (const std::vector<int>& f : first) passes = std::max(passes, f.size());
+  passFirst_.assign(passes, std::vector<int>(std::size_t(grid.cascades), 0));
+  passCount_ = passFirst_;
+  for (std::size_t k = 0; k < first.size(); ++k)
+    for (std::size_t p = 0; p < first[k].size(); ++p) {
+      passFirst_[p][k] = first[k][p];
+      passCount_[p][k] = count[k][p];
+    }
+  uploadEntries(ordered);
   uploadGrids(size, ranges, planes);
 }
 
 int NearField::draw(const GBuffer& camera) {
-  if (uploaded_ == 0) return 0;
+  if (texels_.empty() || passFirst_.empty()) return 0;
   const gl::Program& p = gl::cachedProgram("fullscreen.vert", "cache_near.frag", {}, {"oRadiance"});
   p.use();
   bindIndirectInputs(p, camera);
-  bindSampler(p, "uTexelPosition", GL_TEXTURE_2D, positions_.id(), 3);
-  bindSampler(p, "uTexelNormal", GL_TEXTURE_2D, normals_.id(), 4);
-  bindSampler(p, "uTexelFlux", GL_TEXTURE_2D, fluxes_.id(), 5);
+  bindSampler(p, "uEntryCentre", GL_TEXTURE_2D, centres_.id(), 3);
+  bindSampler(p, "uEntryNormal", GL_TEXTURE_2D, normals_.id(), 4);
+  bindSampler(p, "uEntryFlux", GL_TEXTURE_2D, fluxes_.id(), 5);
   bindSampler(p, "uGrid", GL_TEXTURE_3D, grid_.id(), 6);
   bindSampler(p, "uPlanes", GL_TEXTURE_3D, planes_.id(), 7);
   setCascadeUniforms(p, cascades_);
-  const int k = cascades_.cascades;
+  const int k = std::min(cascades_.cascades, int(cell_.size()));
   glUniform3fv(p.uniform("uGridOrigin"), 1, glm::value_ptr(origin_));
   glUniform1fv(p.uniform("uGridCell"), k, cell_.data());
   glUniform1fv(p.uniform("uGridReach"), k, reach_.data());
   glUniform3iv(p.uniform("uGridCells"), k, glm::value_ptr(cells_[0]));
   glUniform1iv(p.uniform("uGridFirstZ"), k, firstZ_.data());
-  int passes = 0;
-  for (int first = 0; first < uploaded_; first += kNearTexelsPerPass, ++passes) {
-    glUniform1i(p.uniform("uFirst"), first);
-    glUniform1i(p.uniform("uCount"), kNearTexelsPerPass);
+  for (std::size_t pass = 0; pass < passFirst_.size(); ++pass) {
+    glUniform1iv(p.uniform("uFirst"), k, passFirst_[pass].data());
+    glUniform1iv(p.uniform("uCount"), k, passCount_[pass].data());
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   glDisable(GL_BLEND);
   glActiveTexture(GL_TEXTURE0);
-  return passes;
+  return int(passFirst_.size());
 }
 
 }  // namespace manylight

@@ -9,11 +9,19 @@
 //                       (glsl/cache_near.frag).
 // r is the larger of the map's radius (nearRadius) and kNearCells cells of the cascade: the
 // far part is smooth on the scale of r, so trilinear interpolation between that cascade's
-// caches holds it, and a pixel gets the same r as the caches it interpolates. The pixels find
-// their near texels through a world-space grid per cascade, of cells 2 · r (the largest r) or
-// r (kNearTexelsPerCell), built on the CPU from the maps read back: each pixel reads the cells
-// within 2 · r of it, and leaves out those wholly behind its surface, those whose texels all
-// lie in one plane that it is in or behind, and those beyond that reach.
+// caches holds it, and a pixel gets the same r as the caches it interpolates.
+//
+// The near texels come in entries: a map's cluster of kRsmClusterEdge² texels
+// (render/rsm_clusters.h) where its radius is at most kNearClusterSpread · r, else each of its
+// texels alone. A pixel farther from a flat cluster than kRsmClusterDistance radii takes its
+// light as that of one texel at its flux-weighted centre, as the caches' gather does, and sums
+// its texels nearer: so a map of texels much smaller than r (a narrow spot, a near wall) costs
+// a pixel its clusters, not its texels. The pixels find their entries through a world-space
+// grid per cascade, of cells as wide as the entries' reach (2r and an entry's radius) or half
+// that (kNearEntriesPerCell), built on the CPU from the maps read back: each pixel reads the
+// cells within that reach of it, and leaves out those wholly behind its surface and those
+// whose texels all lie in one plane that it is in or behind.
+#include <cmath>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -21,6 +29,7 @@
 #include "render/cache_layout.h"
 #include "render/gbuffer.h"
 #include "render/light_caches.h"
+#include "render/rsm_clusters.h"
 
 namespace manylight {
 
@@ -30,13 +39,15 @@ float nearRadius(const std::vector<float>& flux);
 inline constexpr float kNearTexelEdges = 1.5f;
 // Grid cells a side at most; where the texels' bounds would need more, the cells grow.
 inline constexpr int kNearGridCells = 64;
-// A cascade's grid cells are as wide as its texels' reach (twice the largest near radius), so
-// a pixel reads at most 3 a side; where they would hold more texels than this on average
-// (denser maps, or several over the same surfaces), they are half as wide, at most 5 a side:
-// more cells to read, of which the distance and facing tests leave out more texels.
-inline constexpr std::size_t kNearTexelsPerCell = 16;
-// Near texels one pass reads at most per pixel and cascade: two cascades' worth stays under
-// llvmpipe's 65,535 loop iterations per invocation.
+// Entries a cell holds on average at most: where cells as wide as the reach would hold more
+// (denser maps, or several over the same surfaces) they are half as wide, at most 5 a side.
+inline constexpr std::size_t kNearEntriesPerCell = 16;
+// A cluster stays one entry while its radius is at most this × its texels' r in the cascade,
+// so that the cells' reach (2r and the entries' largest radius) grows little.
+inline constexpr float kNearClusterSpread = 0.25f;
+// Loop iterations one pass takes at most per pixel and cascade (an entry's, and its texels'
+// where it is summed texel by texel): two cascades' worth stays under llvmpipe's 65,535 loop
+// iterations per invocation.
 inline constexpr int kNearTexelsPerPass = 30000;
 
 class NearField {
@@ -45,11 +56,13 @@ class NearField {
   // Forgets the texels added so far.
   void clear();
   // Adds a map's reflecting texels (read back as RGBA floats: position, normal, flux with the
-  // patch area in w), each of near radius `radius`.
+  // patch area in w), `clusters` its clusterRsm, each texel of near radius `radius`.
   void add(const std::vector<float>& position, const std::vector<float>& normal,
-           const std::vector<float>& flux, float radius);
+           const std::vector<float>& flux, const RsmClusters& clusters, float radius);
   long long texels() const { return (long long)texels_.size(); }
-  // Bins the texels in a grid per cascade of `grid` and uploads them, unless they were binned
+  // Clusters the pixels read whole (as entries) in the grids uploaded, over the cascades.
+  long long clusters() const { return clusterEntries_; }
+  // Bins the entries in a grid per cascade of `grid` and uploads them, unless they were binned
   // for cascades of the same cells since the last clear. Throws gl::GlError.
   void upload(const CacheGrid& grid);
   // Adds every covered pixel's near light to `camera`'s radiance target; returns the passes.
@@ -57,29 +70,41 @@ class NearField {
 
  private:
   struct Texel {
-    glm::vec4 positionRadius, normalArea, flux;  // radius: the map's nearRadius
+    glm::vec4 position, normalArea, flux;
   };
-  std::vector<Texel> texels_;
-  int uploaded_ = 0;           // texels
-  std::vector<float> binned_;  // the cascades' cells of the bins uploaded; empty: none
+  // A cluster, or a texel alone: its texels are texels_[first, first + count).
+  struct Entry {
+    glm::vec4 centreRadius;  // the flux-weighted centre, radius (0 for a texel alone)
+    glm::vec4 normalArea;    // mean unit normal, mean texel area
+    // Σ flux, the map's nearRadius: negative where its texels do not share the mean's facing
+    // within kRsmClusterFlat
+    glm::vec4 fluxRadius;
+    int first = 0, count = 0;
+    int cluster = 0;  // its cluster's place in clusters_
+    float mapRadius() const { return std::abs(fluxRadius.w); }
+  };
+  std::vector<Texel> texels_;    // by cluster
+  std::vector<Entry> clusters_;  // of every map added
+  std::vector<float> binned_;    // the cascades' cells of the bins uploaded; empty: none
+  long long clusterEntries_ = 0;
   CacheGrid cascades_;
   glm::vec3 origin_{0.0f};
   std::vector<float> cell_;        // per cascade, the grid's cell edge
-  std::vector<float> reach_;       // per cascade, twice the largest near radius
+  std::vector<float> reach_;       // per cascade, the farthest a pixel reads an entry from
   std::vector<glm::ivec3> cells_;  // per cascade, its cells per axis
   std::vector<int> firstZ_;        // per cascade, its first slice in grid_
-  // Per cascade, every texel, ordered by the cascade's grid cell; per cell, its range and plane.
-  gl::Texture positions_, normals_, fluxes_, grid_, planes_;
-  static std::vector<glm::vec2> binCascade(const std::vector<Texel>& texels, glm::vec3 lo,
-                                           glm::vec3 hi, float reach, std::vector<float>& lists,
-                                           float& cell, glm::ivec3& cells);
-  static std::vector<glm::vec2> binTexels(const std::vector<Texel>& texels, glm::vec3 lo,
-                                          float cell, glm::ivec3 cells, std::vector<float>& lists);
+  // Per pass, per cascade: its first entry and the count (in the cascade's cells' order).
+  std::vector<std::vector<int>> passFirst_, passCount_;
+  // Per cascade, its entries ordered by the cascade's grid cell (the entry textures); per
+  // cell, its range of them and its plane.
+  gl::Texture centres_, normals_, fluxes_, grid_, planes_;
+  std::vector<Entry> cascadeEntries(float cell) const;
+  std::vector<glm::vec4> cellPlanes(const std::vector<Entry>& entries,
+                                    const std::vector<int>& lists,
+                                    const std::vector<glm::vec2>& ranges, float tolerance) const;
   void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
                    const std::vector<std::vector<glm::vec4>>& planes);
-  static std::vector<glm::vec4> cellPlanes(const std::vector<Texel>& texels,
-                                           const std::vector<float>& lists,
-                                           const std::vector<glm::vec2>& ranges, float tolerance);
+  void uploadEntries(const std::vector<Entry>& ordered);
 };
 
 }  // namespace manylight

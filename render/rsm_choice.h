@@ -60,8 +60,7 @@ double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux
 class RsmFluxHistory {
  public:
   // Adds a frame's `flux` (per light of `lights`, scene order) and returns the sum.
-  const std::vector<double>& add(const std::vector<Light>& lights,
-                                 const std::vector<double>& flux);
+  const std::vector<double>& add(const std::vector<Light>& lights, const std::vector<double>& flux);
 
  private:
   std::vector<Light> lights_;

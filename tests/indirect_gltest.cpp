@@ -281,10 +281,11 @@ TEST(Indirect, TheChoiceWeighsTheLightsAsTheShadingModelDoes) {
 // its mean and 99th percentile.
 struct CacheError {
   double mean = 0.0, p99 = 0.0;
+  long long nearClusters = 0;  // IndirectStats::nearClusters
 };
-CacheError cacheError(const Scene& scene, bool shL2, const char* name) {
-  const Frame exact = render(scene, Indirect::Exact, 64);
-  const Frame caches = render(scene, Indirect::Caches, 64, shL2);
+CacheError cacheError(const Scene& scene, bool shL2, const char* name, int rsmSize = 64) {
+  const Frame exact = render(scene, Indirect::Exact, rsmSize);
+  const Frame caches = render(scene, Indirect::Caches, rsmSize, shL2);
   // A pixel's total radiance, floored at 1% of the mean over the covered pixels: the edges of
   // the walls facing out of the room are black, and any error is infinite against 0 there.
   std::vector<double> diffs, totals;
@@ -308,8 +309,10 @@ CacheError cacheError(const Scene& scene, bool shL2, const char* name) {
   CacheError e;
   for (double v : errors) e.mean += v / double(errors.size());
   e.p99 = errors[std::size_t(0.99 * double(errors.size() - 1))];
-  std::cout << name << (shL2 ? " SH L2" : " SH L1") << ": " << caches.stats.indirect.caches
-            << " caches; |caches - exact| of the total: mean " << e.mean << ", p99 " << e.p99
+  e.nearClusters = caches.stats.indirect.nearClusters;
+  std::cout << name << (shL2 ? " SH L2" : " SH L1") << ", " << rsmSize
+            << "² maps: " << caches.stats.indirect.caches << " caches, " << e.nearClusters
+            << " near clusters; |caches - exact| of the total: mean " << e.mean << ", p99 " << e.p99
             << ", max " << errors.back() << "\n";
   return e;
 }
@@ -329,6 +332,11 @@ TEST(Indirect, CachesMatchExact) {
   const CacheError m = cacheError(cornellWith(65535), true, "65,536 lights");
   EXPECT_LT(m.mean, 0.005);
   EXPECT_LT(m.p99, 0.02);
+  // Texels a sixteenth the area: the near field reads clusters whole from 8 of their radii.
+  const CacheError fine = cacheError(cornell(), true, "one spot", 256);
+  EXPECT_GT(fine.nearClusters, 0);
+  EXPECT_LT(fine.mean, 0.005);
+  EXPECT_LT(fine.p99, 0.02);
 }
 
 // The largest channel difference between two frames over the larger of their peaks.

@@ -1,0 +1,148 @@
+// The near field of `--indirect caches` (render/near_field.h) against a CPU double-precision
+// sum of every texel's near part, at pixels written straight into a G-buffer: a map of
+// texels much smaller than the near radius, so that most pixels read clusters whole.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <random>
+
+#include "render/near_field.h"
+#include "scene/shading_model.h"
+#include "tests/gl_support.h"
+
+namespace manylight::testing {
+namespace {
+
+using namespace gl::api;
+
+constexpr int kMap = 64;        // the map's texels a side
+constexpr float kEdge = 0.01f;  // a texel's edge
+constexpr int kFloorRows = 34;  // rows 0–33 lie on the floor, the rest on the wall; the
+                                // clusters of rows 32–35 fold over the corner
+constexpr int kSide = 32;       // the G-buffer's pixels a side
+constexpr float kCell = 0.1f;   // the cascades' smallest cell: r = kNearCells · kCell
+constexpr double kPi = shading::kPi;
+
+struct Map {
+  std::vector<float> position, normal, flux;  // RGBA floats, as read back from a map
+};
+
+// A floor (y = 0) and a wall (z = 0) meeting along x, texels of edge kEdge, flux varying.
+Map cornerMap() {
+  Map m;
+  m.position.assign(4 * kMap * kMap, 0.0f);
+  m.normal = m.flux = m.position;
+  for (int y = 0; y < kMap; ++y)
+    for (int x = 0; x < kMap; ++x) {
+      const std::size_t t = 4 * std::size_t(y * kMap + x);
+      const float u = (float(x) + 0.5f) * kEdge;
+      const bool floor = y < kFloorRows;
+      const float v = (float(floor ? kFloorRows - 1 - y : y - kFloorRows) + 0.5f) * kEdge;
+      const glm::vec3 p = floor ? glm::vec3(u, 0.0f, v) : glm::vec3(u, v, 0.0f);
+      const glm::vec3 n = floor ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+      const glm::vec3 f = glm::vec3(1.0f + float(x % 7) / 7.0f, 1.0f, 0.5f + float(y % 5) / 5.0f);
+      for (int c = 0; c < 3; ++c) {
+        m.position[t + std::size_t(c)] = p[c];
+        m.normal[t + std::size_t(c)] = n[c];
+        m.flux[t + std::size_t(c)] = 1e-4f * f[c];
+      }
+      m.position[t + 3] = m.normal[t + 3] = 1.0f;
+      m.flux[t + 3] = kEdge * kEdge;
+    }
+  return m;
+}
+
+// Σ over every texel of its near light at x, of normal n, for near radius r, as
+// glsl/cache_near.frag's kernel: the pixel's radiance for albedo 1.
+glm::dvec3 oracle(const Map& m, glm::dvec3 x, glm::dvec3 n, double r) {
+  glm::dvec3 sum(0.0);
+  for (std::size_t t = 0; t < m.flux.size(); t += 4) {
+    const glm::dvec3 y(m.position[t], m.position[t + 1], m.position[t + 2]);
+    const glm::dvec3 nt(m.normal[t], m.normal[t + 1], m.normal[t + 2]);
+    const glm::dvec3 w = y - x;
+    const double d2 = std::max(glm::dot(w, w), double(shading::kMinDistanceSquared));
+    if (d2 >= 4.0 * r * r) continue;
+    const double d = std::sqrt(d2), s = std::clamp((d - r) / r, 0.0, 1.0);
+    const double near = 1.0 - s * s * (3.0 - 2.0 * s);
+    const double c = std::max(glm::dot(n, w), 0.0) * std::max(-glm::dot(nt, w), 0.0);
+    const double area = m.flux[t + 3];
+    sum +=
+        glm::dvec3(m.flux[t], m.flux[t + 1], m.flux[t + 2]) * near * c / (d2 * (d2 + area / kPi));
+  }
+  return sum / (kPi * kPi);
+}
+
+void write(const gl::Texture& t, const std::vector<float>& rgba) {
+  glBindTexture(GL_TEXTURE_2D, t.id());
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kSide, kSide, GL_RGBA, GL_FLOAT, rgba.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+// Pixels in the room the corner bounds, their normals towards the corner's middle, jittered:
+// each within 2.5% of the sum (floored at 1% of the largest pixel's), all within 0.3%.
+TEST(NearField, ClustersMatchEveryTexelSummed) {
+  context();
+  const Map map = cornerMap();
+  NearField near;
+  const float radius = nearRadius(map.flux);
+  near.add(map.position, map.normal, map.flux, clusterRsm(map.position, map.normal, map.flux, kMap),
+           radius);
+  const glm::vec3 eye(0.32f, 0.3f, 0.3f);
+  const CacheGrid grid = cacheGrid(eye, kCell, 1);
+  near.upload(grid);
+  ASSERT_GT(near.clusters(), 0);
+
+  GBuffer camera(kSide, kSide);
+  std::vector<float> position(4 * kSide * kSide), normal(position.size()),
+      albedo(position.size(), 1.0f);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (std::size_t i = 0; i < position.size(); i += 4) {
+    const glm::vec3 p(-0.1f + 0.84f * unit(random), 0.002f + 0.5f * unit(random),
+                      0.002f + 0.5f * unit(random));
+    const glm::vec3 jitter(unit(random) - 0.5f, unit(random) - 0.5f, unit(random) - 0.5f);
+    const glm::vec3 n = glm::normalize(glm::vec3(0.32f, 0.1f, 0.1f) - p + 0.3f * jitter);
+    for (int c = 0; c < 3; ++c)
+      position[i + std::size_t(c)] = p[c], normal[i + std::size_t(c)] = n[c];
+    position[i + 3] = normal[i + 3] = 1.0f;
+  }
+  write(camera.target(GBuffer::kPosition), position);
+  write(camera.target(GBuffer::kNormal), normal);
+  write(camera.target(GBuffer::kAlbedo), albedo);
+  glBindFramebuffer(GL_FRAMEBUFFER, camera.lightingFramebuffer().id());
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  const gl::VertexArray vao;
+  glBindVertexArray(vao.id());
+  EXPECT_EQ(near.draw(camera), 1);
+  glBindVertexArray(0);
+  const std::vector<float> radiance = camera.read(GBuffer::kRadiance);
+
+  const double r = std::max(double(radius), double(kNearCells * kCell));
+  double largest = 0.0, worst = 0.0, sumDiff = 0.0, sumOracle = 0.0;
+  std::vector<glm::dvec3> expected;
+  for (std::size_t i = 0; i < position.size(); i += 4) {
+    expected.push_back(oracle(map, glm::dvec3(position[i], position[i + 1], position[i + 2]),
+                              glm::dvec3(normal[i], normal[i + 1], normal[i + 2]), r));
+    largest = std::max(largest, expected.back().r);
+  }
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const double got = radiance[4 * i], want = expected[i].r;
+    worst = std::max(worst, std::abs(got - want) / std::max(want, 0.01 * largest));
+    sumDiff += std::abs(got - want);
+    sumOracle += want;
+  }
+  std::cout << near.clusters() << " clusters read whole; |near - oracle| over the oracle "
+            << "(floored at 1% of the largest): worst " << worst << ", summed "
+            << sumDiff / sumOracle << "\n";
+  // Measured: worst 1.7%, summed 0.20% (the pixel nearest a cluster's horizon, where the
+  // cluster lights it whole or not at all); 1.3e-6 and 2.2e-7 with every cluster summed
+  // texel by texel.
+  EXPECT_LT(worst, 0.025);
+  EXPECT_LT(sumDiff / sumOracle, 0.003);
+}
+
+}  // namespace
+}  // namespace manylight::testing
