@@ -60,7 +60,7 @@ class NearField {
   void add(const std::vector<float>& position, const std::vector<float>& normal,
            const std::vector<float>& flux, const RsmClusters& clusters, float radius);
   long long texels() const { return (long long)texels_.size(); }
-  // Clusters the pixels read whole (as entries) in the grids uploaded, over the cascades.
+  // Clusters kept as one entry in the grids uploaded, summed over the cascades.
   long long clusters() const { return clusterEntries_; }
   // Bins the entries in a grid per cascade of `grid` and uploads them, unless they were binned
   // for cascades of the same cells since the last clear. Throws gl::GlError.

@@ -134,7 +134,7 @@ TEST(NearField, ClustersMatchEveryTexelSummed) {
     sumDiff += std::abs(got - want);
     sumOracle += want;
   }
-  std::cout << near.clusters() << " clusters read whole; |near - oracle| over the oracle "
+  std::cout << near.clusters() << " clusters as entries; |near - oracle| over the oracle "
             << "(floored at 1% of the largest): worst " << worst << ", summed "
             << sumDiff / sumOracle << "\n";
   // Measured: worst 1.7%, summed 0.20% (the pixel nearest a cluster's horizon, where the
