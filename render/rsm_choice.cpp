@@ -72,14 +72,16 @@ double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux
 
 const std::vector<double>& RsmFluxHistory::add(const std::vector<Light>& lights,
                                                const std::vector<double>& flux) {
-  const bool same = lights.size() == lights_.size() && sum_.size() == flux.size() &&
-                    std::equal(lights.begin(), lights.end(), lights_.begin(), sameLight);
-  if (!same) {
+  if (lights.size() != lights_.size() || flux.size() != sum_.size()) {
     lights_ = lights;
     sum_ = flux;
     return sum_;
   }
-  for (std::size_t i = 0; i < sum_.size(); ++i) sum_[i] = kRsmChoiceMemory * sum_[i] + flux[i];
+  for (std::size_t i = 0; i < sum_.size(); ++i) {
+    const bool same = sameLight(lights[i], lights_[i]);
+    sum_[i] = (same ? kRsmChoiceMemory * sum_[i] : 0.0) + flux[i];
+    if (!same) lights_[i] = lights[i];
+  }
   return sum_;
 }
 

@@ -56,7 +56,8 @@ double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux
 // sent into the last few views rather than into one. A light of small reach meets few of a
 // frame's samples, or none, and one frame's measure ranks it by the samples' placement; a
 // playback whose choice followed that would render new maps and caches every frame, and its
-// indirect light would change with them. The sum starts again whenever any light changes.
+// indirect light would change with them. A light's sum starts again when the light changes
+// (moves, or changes colour, intensity, range or cone), and every sum when the count does.
 class RsmFluxHistory {
  public:
   // Adds a frame's `flux` (per light of `lights`, scene order) and returns the sum.
