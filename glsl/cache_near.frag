@@ -23,7 +23,9 @@ uniform sampler3D uGrid;           // per cascade's cell (stacked in z): its fir
 uniform sampler3D uPlanes;         // per cell: the plane its texels share (n, n·p), or 0
 uniform vec3 uGridOrigin;
 uniform float uGridCell[8];
-uniform float uGridReach[8];  // per cascade, the farthest an entry's light reaches
+uniform float uGridReach[8];   // per cascade, the farthest an entry's light reaches
+uniform float uGridSpread[8];  // per cascade, the largest entry's radius: its texels' reach
+                               // past its cell
 uniform ivec3 uGridCells[8];
 uniform int uGridFirstZ[8];
 uniform int uFirst[8];
@@ -86,7 +88,7 @@ vec3 nearLight(int k, vec3 x, vec3 n) {
   float cascadeRadius = kNearCells * uCell[k];
   ivec3 lo = max(ivec3(floor((x - uGridReach[k] - uGridOrigin) / uGridCell[k])), ivec3(0));
   ivec3 hi = min(ivec3(floor((x + uGridReach[k] - uGridOrigin) / uGridCell[k])), uGridCells[k] - 1);
-  int seen = 0;  // texels of the cells before this one
+  int seen = 0;  // entries of the cells before this one
   float tolerance = kPlaneTolerance * uGridCell[k];
   float reach = uGridReach[k];
   vec3 sum = vec3(0.0);
@@ -100,8 +102,10 @@ vec3 nearLight(int k, vec3 x, vec3 n) {
         vec3 outside = max(max(boxLo - x, x - boxLo - uGridCell[k]), 0.0);
         vec3 centre = boxLo + 0.5 * uGridCell[k] - x;
         if (count == 0 || dot(outside, outside) >= reach * reach ||
-            dot(n, centre) + 0.5 * uGridCell[k] * dot(abs(n), vec3(1.0)) <= 0.0) {
-          // Empty, beyond every texel's reach, or wholly behind x's surface: no light from it.
+            dot(n, centre) + 0.5 * uGridCell[k] * dot(abs(n), vec3(1.0)) + uGridSpread[k] <=
+                0.0) {
+          // Empty, beyond every texel's reach, or with all its entries' texels behind x's
+          // surface: no light from it.
           count = 0;
         } else {
           // In or behind the plane of all the cell's texels, x gets no light from them: each

@@ -126,19 +126,25 @@ std::vector<glm::vec2> binCascade(const std::vector<glm::vec3>& points, glm::vec
   return r;
 }
 
-// The passes over one cascade's `entries` in their cells' order, each of at most
-// kNearTexelsPerPass loop iterations: per pass, its first entry and the count.
-void splitPasses(const std::vector<int>& cost, std::vector<int>& first, std::vector<int>& count) {
-  int sum = 0;
-  for (std::size_t i = 0; i < cost.size(); ++i) {
-    if (first.empty() || sum + cost[i] > kNearTexelsPerPass) {
-      first.push_back(int(i));
-      count.push_back(0);
-      sum = 0;
-    }
-    sum += cost[i];
-    ++count.back();
+// The most of `cost` (per cell of a grid of `cells`) that the cells within `m` of one cell on
+// each axis hold: a bound on what any pixel's window of cells holds.
+long long largestWindow(const std::vector<long long>& cost, glm::ivec3 cells, int m) {
+  std::vector<long long> sum = cost, next(cost.size());
+  const int stride[3] = {1, cells.x, cells.x * cells.y};
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int z = 0; z < cells.z; ++z)
+      for (int y = 0; y < cells.y; ++y)
+        for (int x = 0; x < cells.x; ++x) {
+          const glm::ivec3 c(x, y, z);
+          const int at = x + y * stride[1] + z * stride[2];
+          long long s = 0;
+          for (int o = std::max(c[axis] - m, 0); o <= std::min(c[axis] + m, cells[axis] - 1); ++o)
+            s += sum[std::size_t(at + (o - c[axis]) * stride[axis])];
+          next[std::size_t(at)] = s;
+        }
+    sum.swap(next);
   }
+  return sum.empty() ? 0 : *std::max_element(sum.begin(), sum.end());
 }
 
 }  // namespace
@@ -160,6 +166,34 @@ std::vector<NearField::Entry> NearField::cascadeEntries(float cell) const {
     }
   }
   return out;
+}
+
+// The passes of one cascade (`entries` binned by `list` into `ranges` over `cells`, a pixel
+// reading the cells within `m` of its own): per pass the first entry of a pixel's cells in
+// their order, and the count. Where no pixel's cells cost more than kNearTexelsPerPass loop
+// iterations (an entry's one, and a cluster's texels where it is summed texel by texel), one
+// pass reads them all; else each pass reads as many entries as cost that at most.
+void NearField::cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
+                              const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
+                              std::vector<int>& first, std::vector<int>& count) {
+  constexpr long long kMostPerEntry = 1 + kRsmClusterEdge * kRsmClusterEdge;
+  std::vector<long long> cost(ranges.size(), 0), held(ranges.size(), 0);
+  for (std::size_t c = 0; c < ranges.size(); ++c) {
+    held[c] = (long long)ranges[c].y;
+    for (std::size_t j = std::size_t(ranges[c].x); j < std::size_t(ranges[c].x + ranges[c].y); ++j)
+      cost[c] += entries[std::size_t(list[j])].centreRadius.w > 0.0f ? kMostPerEntry : 1;
+  }
+  if (largestWindow(cost, cells, m) <= kNearTexelsPerPass) {
+    first.push_back(0);
+    count.push_back(int(entries.size()));
+    return;
+  }
+  const long long perPass = kNearTexelsPerPass / kMostPerEntry;
+  const long long most = largestWindow(held, cells, m);
+  for (long long f = 0; f < most; f += perPass) {
+    first.push_back(int(f));
+    count.push_back(int(perPass));
+  }
 }
 
 // Per cell, the plane (unit normal, offset n·p) all its texels lie in within `tolerance`, or
@@ -219,6 +253,12 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
 // records of their own, kRsmClusterEdge² a cluster.
 void NearField::uploadEntries(const std::vector<Entry>& ordered) {
   constexpr int kSlots = kRsmClusterEdge * kRsmClusterEdge;
+  // Records are numbered in float texels: exact up to 2^24.
+  const std::size_t records = ordered.size() + clusters_.size() * kSlots;
+  if (records > std::size_t(1) << 24)
+    throw gl::GlError("the near field needs " + std::to_string(records) +
+                      " records, past 16,777,216: use fewer or smaller maps (--rsm-lights, "
+                      "--rsm-size)");
   std::vector<glm::vec4> centres, normals, fluxes;
   for (const Entry& e : ordered) {
     centres.push_back(e.centreRadius);
@@ -251,19 +291,20 @@ void NearField::upload(const CacheGrid& grid) {
   // The bins depend on the texels and the cascades' cells only, not on where the camera is.
   if (texels_.empty() || binned_ == grid.cell) return;
   binned_ = grid.cell;
-  glm::vec3 lo(clusters_[0].centreRadius), hi = lo;
-  float mapRadius = 0.0f;
-  for (const Entry& c : clusters_) {
-    lo = glm::min(lo, glm::vec3(c.centreRadius));
-    hi = glm::max(hi, glm::vec3(c.centreRadius));
-    mapRadius = std::max(mapRadius, c.mapRadius());
+  // Over the texels, which hold every cluster's centre: a texel alone is an entry too.
+  glm::vec3 lo(texels_[0].position), hi = lo;
+  for (const Texel& t : texels_) {
+    lo = glm::min(lo, glm::vec3(t.position));
+    hi = glm::max(hi, glm::vec3(t.position));
   }
+  float mapRadius = 0.0f;
+  for (const Entry& c : clusters_) mapRadius = std::max(mapRadius, c.mapRadius());
   origin_ = lo;
   clusterEntries_ = 0;
   std::vector<Entry> ordered;                  // every cascade's entries in its cells' order
   std::vector<std::vector<glm::vec2>> ranges;  // per cascade, per cell: first entry, count
   std::vector<std::vector<glm::vec4>> planes;  // per cascade, per cell: cellPlanes
-  cell_.clear(), reach_.clear(), cells_.clear(), firstZ_.clear();
+  cell_.clear(), reach_.clear(), spread_.clear(), cells_.clear(), firstZ_.clear();
   std::vector<std::vector<int>> first, count;  // per cascade, per pass
   glm::ivec3 size(1, 1, 0);
   for (int k = 0; k < grid.cascades; ++k) {
@@ -280,17 +321,14 @@ void NearField::upload(const CacheGrid& grid) {
     std::vector<int> list;
     std::vector<glm::vec2> r = binCascade(points, lo, hi, reach, list, cell, cells);
     planes.push_back(cellPlanes(entries, list, r, kPlaneTolerance * cell));
-    std::vector<int> cost;
-    for (int i : list) {
-      const bool cluster = entries[std::size_t(i)].centreRadius.w > 0.0f;
-      cost.push_back(1 + (cluster ? kRsmClusterEdge * kRsmClusterEdge : 0));
-      clusterEntries_ += cluster;
-    }
+    for (const Entry& e : entries) clusterEntries_ += e.centreRadius.w > 0.0f;
     first.emplace_back(), count.emplace_back();
-    splitPasses(cost, first.back(), count.back());
+    cascadePasses(entries, list, r, cells, int(std::ceil(reach / cell)) + 1, first.back(),
+                  count.back());
     for (glm::vec2& range : r) range.x += float(ordered.size());
     for (int i : list) ordered.push_back(entries[std::size_t(i)]);
-    cell_.push_back(cell), reach_.push_back(reach), cells_.push_back(cells);
+    cell_.push_back(cell), reach_.push_back(reach), spread_.push_back(spread);
+    cells_.push_back(cells);
     firstZ_.push_back(size.z);
     size = glm::ivec3(std::max(size.x, cells.x), std::max(size.y, cells.y), size.z + cells.z);
     ranges.push_back(std::move(r));
@@ -323,6 +361,7 @@ int NearField::draw(const GBuffer& camera) {
   glUniform3fv(p.uniform("uGridOrigin"), 1, glm::value_ptr(origin_));
   glUniform1fv(p.uniform("uGridCell"), k, cell_.data());
   glUniform1fv(p.uniform("uGridReach"), k, reach_.data());
+  glUniform1fv(p.uniform("uGridSpread"), k, spread_.data());
   glUniform3iv(p.uniform("uGridCells"), k, glm::value_ptr(cells_[0]));
   glUniform1iv(p.uniform("uGridFirstZ"), k, firstZ_.data());
   for (std::size_t pass = 0; pass < passFirst_.size(); ++pass) {

@@ -46,8 +46,8 @@ inline constexpr std::size_t kNearEntriesPerCell = 16;
 // so that the cells' reach (2r and the entries' largest radius) grows little.
 inline constexpr float kNearClusterSpread = 0.25f;
 // Loop iterations one pass takes at most per pixel and cascade (an entry's, and its texels'
-// where it is summed texel by texel): two cascades' worth stays under llvmpipe's 65,535 loop
-// iterations per invocation.
+// where it is summed texel by texel; NearField::cascadePasses): two cascades' worth stays under
+// llvmpipe's 65,535 loop iterations per invocation.
 inline constexpr int kNearTexelsPerPass = 30000;
 
 class NearField {
@@ -91,6 +91,7 @@ class NearField {
   glm::vec3 origin_{0.0f};
   std::vector<float> cell_;        // per cascade, the grid's cell edge
   std::vector<float> reach_;       // per cascade, the farthest a pixel reads an entry from
+  std::vector<float> spread_;      // per cascade, the largest entry's radius
   std::vector<glm::ivec3> cells_;  // per cascade, its cells per axis
   std::vector<int> firstZ_;        // per cascade, its first slice in grid_
   // Per pass, per cascade: its first entry and the count (in the cascade's cells' order).
@@ -99,6 +100,9 @@ class NearField {
   // cell, its range of them and its plane.
   gl::Texture centres_, normals_, fluxes_, grid_, planes_;
   std::vector<Entry> cascadeEntries(float cell) const;
+  static void cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
+                            const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
+                            std::vector<int>& first, std::vector<int>& count);
   std::vector<glm::vec4> cellPlanes(const std::vector<Entry>& entries,
                                     const std::vector<int>& lists,
                                     const std::vector<glm::vec2>& ranges, float tolerance) const;

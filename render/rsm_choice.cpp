@@ -74,15 +74,19 @@ const std::vector<double>& RsmFluxHistory::add(const std::vector<Light>& lights,
                                                const std::vector<double>& flux) {
   if (lights.size() != lights_.size() || flux.size() != sum_.size()) {
     lights_ = lights;
-    sum_ = flux;
-    return sum_;
+    sum_.assign(flux.size(), 0.0);
+    weight_.assign(flux.size(), 0.0);
   }
+  mean_.resize(flux.size());
   for (std::size_t i = 0; i < sum_.size(); ++i) {
     const bool same = sameLight(lights[i], lights_[i]);
-    sum_[i] = (same ? kRsmChoiceMemory * sum_[i] : 0.0) + flux[i];
     if (!same) lights_[i] = lights[i];
+    const double keep = same ? kRsmChoiceMemory : 0.0;
+    sum_[i] = keep * sum_[i] + flux[i];
+    weight_[i] = keep * weight_[i] + 1.0;
+    mean_[i] = sum_[i] / weight_[i];
   }
-  return sum_;
+  return mean_;
 }
 
 std::vector<double> LightFlux::measure(const GpuScene& gpu, const std::vector<Light>& lights,

@@ -15,9 +15,9 @@ namespace manylight {
 struct RsmChoice {
   std::vector<int> lights;  // scene indices: those kept from the frame before, then by flux
   int candidates = 0;       // spot and directional lights
-  // The chosen lights' share of the direct flux the view receives: of Σ over the sampled
-  // pixels of every light's irradiance there (luminance), the part the chosen ones give.
-  // 1 where no light reaches the view.
+  // The chosen lights' share of the flux the choice ranked by: of Σ over the sampled pixels
+  // of every light's irradiance there (luminance), or of the means of such sums
+  // (RsmFluxHistory), the part the chosen ones give. 1 where no light reaches the view.
   double fluxShare = 1.0;
 };
 
@@ -51,23 +51,25 @@ inline constexpr double kRsmChoiceKeep = 0.5;
 // is 0.
 double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux);
 
-// The flux the frames so far measured, frame after frame of one renderer: each frame's flux
-// counts kRsmChoiceMemory^age, so that the choice (chooseRsmLights) ranks lights by what they
-// sent into the last few views rather than into one. A light of small reach meets few of a
+// The flux the frames so far measured, frame after frame of one renderer, as a weighted mean
+// per light in which each frame's flux counts kRsmChoiceMemory^age: the choice
+// (chooseRsmLights) ranks lights by what they sent into the last few views rather than into
+// one. A light of small reach meets few of a
 // frame's samples, or none, and one frame's measure ranks it by the samples' placement; a
 // playback whose choice followed that would render new maps and caches every frame, and its
-// indirect light would change with them. A light's sum starts again when the light changes
-// (moves, or changes colour, intensity, range or cone), and every sum when the count does.
+// indirect light would change with them. A light's mean starts again from its frame's flux
+// when the light changes (moves, or changes colour, intensity, range or cone), and every
+// light's when their count does: a light that changes every frame is ranked by its latest.
 class RsmFluxHistory {
  public:
-  // Adds a frame's `flux` (per light of `lights`, scene order) and returns the sum.
+  // Adds a frame's `flux` (per light of `lights`, scene order) and returns the means.
   const std::vector<double>& add(const std::vector<Light>& lights, const std::vector<double>& flux);
 
  private:
   std::vector<Light> lights_;
-  std::vector<double> sum_;
+  std::vector<double> sum_, weight_, mean_;
 };
-// Weight of the frame before against this one's: a frame's flux counts about ten frames.
+// Weight of the frame before against this one's: the mean holds about the last ten frames.
 inline constexpr double kRsmChoiceMemory = 0.9;
 
 // The flux of every light on the GPU.

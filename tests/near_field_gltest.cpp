@@ -74,10 +74,56 @@ glm::dvec3 oracle(const Map& m, glm::dvec3 x, glm::dvec3 n, double r) {
   return sum / (kPi * kPi);
 }
 
-void write(const gl::Texture& t, const std::vector<float>& rgba) {
+void write(const gl::Texture& t, int side, const std::vector<float>& rgba) {
   glBindTexture(GL_TEXTURE_2D, t.id());
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kSide, kSide, GL_RGBA, GL_FLOAT, rgba.data());
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, side, side, GL_RGBA, GL_FLOAT, rgba.data());
   glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+// The near light `near` gives side × side pixels at `position` of `normal` (RGBA floats),
+// albedo 1, read back; `passes` the passes it took.
+std::vector<float> drawNear(NearField& near, int side, const std::vector<float>& position,
+                            const std::vector<float>& normal, int& passes) {
+  GBuffer camera(side, side);
+  write(camera.target(GBuffer::kPosition), side, position);
+  write(camera.target(GBuffer::kNormal), side, normal);
+  write(camera.target(GBuffer::kAlbedo), side, std::vector<float>(position.size(), 1.0f));
+  glBindFramebuffer(GL_FRAMEBUFFER, camera.lightingFramebuffer().id());
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  const gl::VertexArray vao;
+  glBindVertexArray(vao.id());
+  passes = near.draw(camera);
+  glBindVertexArray(0);
+  return camera.read(GBuffer::kRadiance);
+}
+
+// A map of n × n texels of `area`, flux 1e-4 each: at `corner` + (x, 0, y) · spacing, facing
+// +y, or with their normals tilted ±27° about z column by column (`bumpy`: no cluster flat).
+Map gridMap(int n, glm::vec3 corner, float spacing, float area, bool bumpy) {
+  Map m;
+  m.position.assign(4 * std::size_t(n) * std::size_t(n), 0.0f);
+  m.normal = m.flux = m.position;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const std::size_t t = 4 * std::size_t(y * n + x);
+      const glm::vec3 p = corner + glm::vec3(float(x) + 0.5f, 0.0f, float(y) + 0.5f) * spacing;
+      const glm::vec3 normal =
+          bumpy ? glm::normalize(glm::vec3(x % 2 ? 0.5f : -0.5f, 1.0f, 0.0f)) : glm::vec3(0, 1, 0);
+      for (int c = 0; c < 3; ++c) {
+        m.position[t + std::size_t(c)] = p[c];
+        m.normal[t + std::size_t(c)] = normal[c];
+        m.flux[t + std::size_t(c)] = 1e-4f;
+      }
+      m.position[t + 3] = m.normal[t + 3] = 1.0f;
+      m.flux[t + 3] = area;
+    }
+  return m;
+}
+
+void add(NearField& near, const Map& m, int side) {
+  near.add(m.position, m.normal, m.flux, clusterRsm(m.position, m.normal, m.flux, side),
+           nearRadius(m.flux));
 }
 
 // Pixels in the room the corner bounds, their normals towards the corner's middle, jittered:
@@ -94,9 +140,7 @@ TEST(NearField, ClustersMatchEveryTexelSummed) {
   near.upload(grid);
   ASSERT_GT(near.clusters(), 0);
 
-  GBuffer camera(kSide, kSide);
-  std::vector<float> position(4 * kSide * kSide), normal(position.size()),
-      albedo(position.size(), 1.0f);
+  std::vector<float> position(4 * kSide * kSide), normal(position.size());
   std::mt19937 random(7);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (std::size_t i = 0; i < position.size(); i += 4) {
@@ -108,17 +152,9 @@ TEST(NearField, ClustersMatchEveryTexelSummed) {
       position[i + std::size_t(c)] = p[c], normal[i + std::size_t(c)] = n[c];
     position[i + 3] = normal[i + 3] = 1.0f;
   }
-  write(camera.target(GBuffer::kPosition), position);
-  write(camera.target(GBuffer::kNormal), normal);
-  write(camera.target(GBuffer::kAlbedo), albedo);
-  glBindFramebuffer(GL_FRAMEBUFFER, camera.lightingFramebuffer().id());
-  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
-  const gl::VertexArray vao;
-  glBindVertexArray(vao.id());
-  EXPECT_EQ(near.draw(camera), 1);
-  glBindVertexArray(0);
-  const std::vector<float> radiance = camera.read(GBuffer::kRadiance);
+  int passes = 0;
+  const std::vector<float> radiance = drawNear(near, kSide, position, normal, passes);
+  EXPECT_EQ(passes, 1);
 
   const double r = std::max(double(radius), double(kNearCells * kCell));
   double largest = 0.0, worst = 0.0, sumDiff = 0.0, sumOracle = 0.0;
@@ -142,6 +178,75 @@ TEST(NearField, ClustersMatchEveryTexelSummed) {
   // texel by texel.
   EXPECT_LT(worst, 0.025);
   EXPECT_LT(sumDiff / sumOracle, 0.003);
+}
+
+// Pixels above a map of 256² texels whose clusters are not flat, each summed texel by texel:
+// 16 times as many loop iterations as entries, so the near field takes several passes. A
+// second map far away, earlier in the cells' order, must not shift which entries a pass
+// gives these pixels: each pass's share is counted over the pixel's own cells.
+TEST(NearField, EveryPassReadsItsShareOfAPixelsCells) {
+  context();
+  const glm::vec3 centre(12.8f, 5.0f, 12.8f);
+  const Map bumpy = gridMap(256, centre - glm::vec3(0.1f, 0.0f, 0.1f), 0.2f / 256.0f, 1e-6f, true);
+  const Map far = gridMap(256, glm::vec3(0.0f), 0.1f, 1e-4f, false);
+  const float cell = 0.25f;
+  std::vector<float> position(4 * 8 * 8), normal(position.size());
+  for (std::size_t i = 0; i < position.size(); i += 4) {
+    const glm::vec3 p = centre + glm::vec3(0.01f * float(i / 4 % 8), 0.1f, 0.01f * float(i / 32));
+    for (int c = 0; c < 3; ++c)
+      position[i + std::size_t(c)] = p[c], normal[i + std::size_t(c)] = c == 1 ? -1.0f : 0.0f;
+    position[i + 3] = normal[i + 3] = 1.0f;
+  }
+  NearField near;
+  add(near, far, 256);
+  add(near, bumpy, 256);
+  near.upload(cacheGrid(centre, cell, 1));
+  int passes = 0;
+  const std::vector<float> radiance = drawNear(near, 8, position, normal, passes);
+  const double r = std::max(double(nearRadius(bumpy.flux)), double(kNearCells * cell));
+  double worst = 0.0;
+  for (std::size_t i = 0; i < position.size(); i += 4) {
+    const glm::dvec3 x(position[i], position[i + 1], position[i + 2]),
+        n(normal[i], normal[i + 1], normal[i + 2]);
+    const double want = oracle(bumpy, x, n, r).r;  // the far map is beyond every pixel's reach
+    worst = std::max(worst, std::abs(double(radiance[i]) - want) / want);
+  }
+  std::cout << passes << " passes; worst |near - oracle| over the oracle " << worst << "\n";
+  EXPECT_GT(passes, 1);
+  EXPECT_LT(worst, 1e-4);
+}
+
+// Texels alone (a map too sparse for its clusters to stay whole), the pixels beyond the map's
+// edge facing it: the grid holds the texels at its edge, not only the clusters' centres.
+TEST(NearField, TexelsAtTheMapsEdgeLightThePixelsBeyondIt) {
+  context();
+  const Map sparse = gridMap(16, glm::vec3(0.0f), 0.2f, 1e-4f, false);
+  const float cell = 0.1f;
+  NearField near;
+  add(near, sparse, 16);
+  near.upload(cacheGrid(glm::vec3(1.6f, 0.0f, 1.6f), cell, 1));
+  EXPECT_EQ(near.clusters(), 0);
+  std::vector<float> position(4 * 8 * 8), normal(position.size());
+  const glm::vec3 facing = glm::normalize(glm::vec3(1.0f, -0.2f, 0.0f));
+  for (std::size_t i = 0; i < position.size(); i += 4) {
+    const glm::vec3 p(-0.05f - 0.02f * float(i / 4 % 8), 0.05f, 1.5f + 0.01f * float(i / 32));
+    for (int c = 0; c < 3; ++c)
+      position[i + std::size_t(c)] = p[c], normal[i + std::size_t(c)] = facing[c];
+    position[i + 3] = normal[i + 3] = 1.0f;
+  }
+  int passes = 0;
+  const std::vector<float> radiance = drawNear(near, 8, position, normal, passes);
+  const double r = std::max(double(nearRadius(sparse.flux)), double(kNearCells * cell));
+  double got = 0.0, want = 0.0;
+  for (std::size_t i = 0; i < position.size(); i += 4) {
+    got += radiance[i];
+    want += oracle(sparse, glm::dvec3(position[i], position[i + 1], position[i + 2]),
+                   glm::dvec3(normal[i], normal[i + 1], normal[i + 2]), r)
+                .r;
+  }
+  std::cout << "near " << got << ", oracle " << want << "\n";
+  EXPECT_GT(want, 0.0);
+  EXPECT_NEAR(got, want, 1e-5 * want);
 }
 
 }  // namespace

@@ -27,25 +27,26 @@ TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 3}).lights, (std::vector<int>{3, 0}));
 }
 
-// Each frame's flux counts kRsmChoiceMemory^age, until its light changes: then its sum starts
-// again from that frame's flux, the others' going on. fluxShare is the chosen lights' part of
-// a flux's sum.
+// A light's mean weighs each frame's flux kRsmChoiceMemory^age, until the light changes: then
+// it starts again from that frame's flux, the others' going on. fluxShare is the chosen
+// lights' part of a flux's sum.
 TEST(Indirect, TheChoiceRanksByTheFluxOfTheLastFrames) {
   std::vector<Light> lights(3);
   for (Light& l : lights) l.type = LightType::Spot;
   RsmFluxHistory history;
   EXPECT_EQ(history.add(lights, {4.0, 0.0, 1.0}), (std::vector<double>{4.0, 0.0, 1.0}));
   const std::vector<double> second = history.add(lights, {0.0, 2.0, 1.0});
-  EXPECT_DOUBLE_EQ(second[0], 4.0 * kRsmChoiceMemory);
-  EXPECT_DOUBLE_EQ(second[1], 2.0);
-  EXPECT_DOUBLE_EQ(second[2], 1.0 * kRsmChoiceMemory + 1.0);
+  const double m = kRsmChoiceMemory;
+  EXPECT_DOUBLE_EQ(second[0], 4.0 * m / (m + 1.0));
+  EXPECT_DOUBLE_EQ(second[1], 2.0 / (m + 1.0));
+  EXPECT_DOUBLE_EQ(second[2], 1.0);
   // Light 0, out of this frame's samples, keeps its map over light 1.
   EXPECT_EQ(chooseRsmLights(lights, second, 1, {0}).lights, (std::vector<int>{0}));
   lights[2].intensity = 2.0f;
-  const std::vector<double> third = history.add(lights, {0.0, 2.0, 1.0});
-  EXPECT_DOUBLE_EQ(third[0], 4.0 * kRsmChoiceMemory * kRsmChoiceMemory);
-  EXPECT_DOUBLE_EQ(third[1], 2.0 * kRsmChoiceMemory + 2.0);
-  EXPECT_DOUBLE_EQ(third[2], 1.0);
+  const std::vector<double> third = history.add(lights, {0.0, 2.0, 3.0});
+  EXPECT_DOUBLE_EQ(third[0], 4.0 * m * m / (m * m + m + 1.0));
+  EXPECT_DOUBLE_EQ(third[1], (2.0 * m + 2.0) / (m * m + m + 1.0));
+  EXPECT_DOUBLE_EQ(third[2], 3.0);
   lights.pop_back();
   EXPECT_EQ(history.add(lights, {1.0, 0.0}), (std::vector<double>{1.0, 0.0}));
   EXPECT_DOUBLE_EQ(fluxShare({1}, {0.0, 2.0, 1.0}), 2.0 / 3.0);
