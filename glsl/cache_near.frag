@@ -19,7 +19,9 @@ uniform sampler2D uEntryCentre;  // xyz, radius (0: a texel alone)
 uniform sampler2D uEntryNormal;
 // Σ flux, the map's near radius; negative where the cluster's texels do not share its facing
 uniform sampler2D uEntryFlux;
-uniform sampler3D uGrid;           // per cascade's cell (stacked in z): its first entry, count
+// Per cascade's cell (stacked in z): its first entry, count, and the entries of the cells a
+// pixel in it may read (0: none, and it reads no cell)
+uniform sampler3D uGrid;
 uniform sampler3D uPlanes;         // per cell: the plane its texels share (n, n·p), or 0
 uniform vec3 uGridOrigin;
 uniform float uGridCell[8];
@@ -85,6 +87,8 @@ vec3 cellLight(int base, int first, int last, vec3 x, vec3 n, float cascadeRadiu
 
 // Σ over the near entries of cascade k's grid: the irradiance times π.
 vec3 nearLight(int k, vec3 x, vec3 n) {
+  ivec3 home = clamp(ivec3(floor((x - uGridOrigin) / uGridCell[k])), ivec3(0), uGridCells[k] - 1);
+  if (texelFetch(uGrid, home + ivec3(0, 0, uGridFirstZ[k]), 0).b == 0.0) return vec3(0.0);
   float cascadeRadius = kNearCells * uCell[k];
   ivec3 lo = max(ivec3(floor((x - uGridReach[k] - uGridOrigin) / uGridCell[k])), ivec3(0));
   ivec3 hi = min(ivec3(floor((x + uGridReach[k] - uGridOrigin) / uGridCell[k])), uGridCells[k] - 1);

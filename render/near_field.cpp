@@ -126,9 +126,9 @@ std::vector<glm::vec2> binCascade(const std::vector<glm::vec3>& points, glm::vec
   return r;
 }
 
-// The most of `cost` (per cell of a grid of `cells`) that the cells within `m` of one cell on
-// each axis hold: a bound on what any pixel's window of cells holds.
-long long largestWindow(const std::vector<long long>& cost, glm::ivec3 cells, int m) {
+// Per cell of a grid of `cells`, the sum of `cost` over the cells within `m` of it on each
+// axis: a bound on what a pixel's window of cells holds.
+std::vector<long long> windowSums(const std::vector<long long>& cost, glm::ivec3 cells, int m) {
   std::vector<long long> sum = cost, next(cost.size());
   const int stride[3] = {1, cells.x, cells.x * cells.y};
   for (int axis = 0; axis < 3; ++axis) {
@@ -144,7 +144,11 @@ long long largestWindow(const std::vector<long long>& cost, glm::ivec3 cells, in
         }
     sum.swap(next);
   }
-  return sum.empty() ? 0 : *std::max_element(sum.begin(), sum.end());
+  return sum;
+}
+
+long long largest(const std::vector<long long>& v) {
+  return v.empty() ? 0 : *std::max_element(v.begin(), v.end());
 }
 
 }  // namespace
@@ -172,10 +176,12 @@ std::vector<NearField::Entry> NearField::cascadeEntries(float cell) const {
 // reading the cells within `m` of its own): per pass the first entry of a pixel's cells in
 // their order, and the count. Where no pixel's cells cost more than kNearTexelsPerPass loop
 // iterations (an entry's one, and a cluster's texels where it is summed texel by texel), one
-// pass reads them all; else each pass reads as many entries as cost that at most.
+// pass reads them all; else each pass reads as many entries as cost that at most. `window`:
+// per cell, the entries within `m` cells of it (0: a pixel there has none to read).
 void NearField::cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
                               const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
-                              std::vector<int>& first, std::vector<int>& count) {
+                              std::vector<int>& first, std::vector<int>& count,
+                              std::vector<float>& window) {
   constexpr long long kMostPerEntry = 1 + kRsmClusterEdge * kRsmClusterEdge;
   std::vector<long long> cost(ranges.size(), 0), held(ranges.size(), 0);
   for (std::size_t c = 0; c < ranges.size(); ++c) {
@@ -183,13 +189,15 @@ void NearField::cascadePasses(const std::vector<Entry>& entries, const std::vect
     for (std::size_t j = std::size_t(ranges[c].x); j < std::size_t(ranges[c].x + ranges[c].y); ++j)
       cost[c] += entries[std::size_t(list[j])].centreRadius.w > 0.0f ? kMostPerEntry : 1;
   }
-  if (largestWindow(cost, cells, m) <= kNearTexelsPerPass) {
+  const std::vector<long long> entriesNear = windowSums(held, cells, m);
+  window.assign(entriesNear.begin(), entriesNear.end());
+  if (largest(windowSums(cost, cells, m)) <= kNearTexelsPerPass) {
     first.push_back(0);
     count.push_back(int(entries.size()));
     return;
   }
   const long long perPass = kNearTexelsPerPass / kMostPerEntry;
-  const long long most = largestWindow(held, cells, m);
+  const long long most = largest(entriesNear);
   for (long long f = 0; f < most; f += perPass) {
     first.push_back(int(f));
     count.push_back(int(perPass));
@@ -227,6 +235,7 @@ std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
 // Per cascade's cell, stacked in z in volumes of `size`: its first entry and their count
 // (grid_), and cellPlanes (planes_).
 void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
+                            const std::vector<std::vector<float>>& windows,
                             const std::vector<std::vector<glm::vec4>>& planes) {
   std::vector<glm::vec4> volume(std::size_t(size.x) * std::size_t(size.y) * std::size_t(size.z),
                                 glm::vec4(0.0f)),
@@ -241,7 +250,7 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
                   std::size_t(size.x) +
               std::size_t(x);
           const std::size_t c = std::size_t((z * cells.y + y) * cells.x + x);
-          volume[at] = glm::vec4(ranges[k][c], 0.0f, 0.0f);
+          volume[at] = glm::vec4(ranges[k][c], windows[k][c], 0.0f);
           planeVolume[at] = planes[k][c];
         }
   }
@@ -304,6 +313,7 @@ void NearField::upload(const CacheGrid& grid) {
   std::vector<Entry> ordered;                  // every cascade's entries in its cells' order
   std::vector<std::vector<glm::vec2>> ranges;  // per cascade, per cell: first entry, count
   std::vector<std::vector<glm::vec4>> planes;  // per cascade, per cell: cellPlanes
+  std::vector<std::vector<float>> windows;     // per cascade, per cell: cascadePasses' window
   cell_.clear(), reach_.clear(), spread_.clear(), cells_.clear(), firstZ_.clear();
   std::vector<std::vector<int>> first, count;  // per cascade, per pass
   glm::ivec3 size(1, 1, 0);
@@ -322,9 +332,9 @@ void NearField::upload(const CacheGrid& grid) {
     std::vector<glm::vec2> r = binCascade(points, lo, hi, reach, list, cell, cells);
     planes.push_back(cellPlanes(entries, list, r, kPlaneTolerance * cell));
     for (const Entry& e : entries) clusterEntries_ += e.centreRadius.w > 0.0f;
-    first.emplace_back(), count.emplace_back();
+    first.emplace_back(), count.emplace_back(), windows.emplace_back();
     cascadePasses(entries, list, r, cells, int(std::ceil(reach / cell)) + 1, first.back(),
-                  count.back());
+                  count.back(), windows.back());
     for (glm::vec2& range : r) range.x += float(ordered.size());
     for (int i : list) ordered.push_back(entries[std::size_t(i)]);
     cell_.push_back(cell), reach_.push_back(reach), spread_.push_back(spread);
@@ -343,7 +353,7 @@ void NearField::upload(const CacheGrid& grid) {
       passCount_[p][k] = count[k][p];
     }
   uploadEntries(ordered);
-  uploadGrids(size, ranges, planes);
+  uploadGrids(size, ranges, windows, planes);
 }
 
 int NearField::draw(const GBuffer& camera) {

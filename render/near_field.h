@@ -102,11 +102,13 @@ class NearField {
   std::vector<Entry> cascadeEntries(float cell) const;
   static void cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
                             const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
-                            std::vector<int>& first, std::vector<int>& count);
+                            std::vector<int>& first, std::vector<int>& count,
+                            std::vector<float>& window);
   std::vector<glm::vec4> cellPlanes(const std::vector<Entry>& entries,
                                     const std::vector<int>& lists,
                                     const std::vector<glm::vec2>& ranges, float tolerance) const;
   void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
+                   const std::vector<std::vector<float>>& windows,
                    const std::vector<std::vector<glm::vec4>>& planes);
   void uploadEntries(const std::vector<Entry>& ordered);
 };
