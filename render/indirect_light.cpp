@@ -135,7 +135,7 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   const RsmChoice choice =
       chooseRsmLights(lights, fluxHistory_.add(lights, flux), settings.rsmLights, mapLights_);
   stats.candidates = choice.candidates;
-  stats.fluxShare = fluxShare(choice.lights, flux);  // of this view's flux
+  stats.fluxShare = fluxShare(choice.lights, flux);  // of this frame's flux, not the history's
   stats.chooseMs = msSince(start);
   start = Clock::now();
   stats.mapsKept = sameMaps(lights, choice);

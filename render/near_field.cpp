@@ -61,13 +61,13 @@ namespace {
 
 constexpr int kTextureWidth = 1024;
 
-void upload2d(const gl::Texture& t, const std::vector<glm::vec4>& texels) {
-  const int height = int((texels.size() + kTextureWidth - 1) / kTextureWidth);
-  std::vector<glm::vec4> padded(std::size_t(std::max(height, 1)) * kTextureWidth, glm::vec4(0.0f));
-  std::copy(texels.begin(), texels.end(), padded.begin());
+// `texels` padded with zeros to whole rows of kTextureWidth, at least one.
+void upload2d(const gl::Texture& t, std::vector<glm::vec4>& texels) {
+  const int height = std::max(int((texels.size() + kTextureWidth - 1) / kTextureWidth), 1);
+  texels.resize(std::size_t(height) * kTextureWidth, glm::vec4(0.0f));
   glBindTexture(GL_TEXTURE_2D, t.id());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTextureWidth, std::max(height, 1), 0, GL_RGBA,
-               GL_FLOAT, glm::value_ptr(padded[0]));
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTextureWidth, height, 0, GL_RGBA, GL_FLOAT,
+               glm::value_ptr(texels[0]));
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }

@@ -59,7 +59,6 @@ RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<do
     if (std::find(choice.lights.begin(), choice.lights.end(), candidates[j]) == choice.lights.end())
       choice.lights.push_back(candidates[j]);
   }
-  choice.fluxShare = fluxShare(choice.lights, flux);
   return choice;
 }
 

@@ -15,10 +15,6 @@ namespace manylight {
 struct RsmChoice {
   std::vector<int> lights;  // scene indices: those kept from the frame before, then by flux
   int candidates = 0;       // spot and directional lights
-  // The chosen lights' share of the flux the choice ranked by: of Σ over the sampled pixels
-  // of every light's irradiance there (luminance), or of the means of such sums
-  // (RsmFluxHistory), the part the chosen ones give. 1 where no light reaches the view.
-  double fluxShare = 1.0;
 };
 
 // Pixels the choice wants, on a regular grid over the covered pixels: 256, or fewer (down to
@@ -47,19 +43,21 @@ RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<do
                           int count, const std::vector<int>& previous = {});
 inline constexpr double kRsmChoiceKeep = 0.5;
 
-// The share of Σ `flux` that the `chosen` lights have (RsmChoice::fluxShare); 1 where the sum
-// is 0.
+// The share of Σ `flux` that the `chosen` lights have; 1 where the sum is 0. Of a frame's
+// LightFlux::measure, it is the chosen lights' share of the direct flux the view receives (of
+// Σ over the sampled pixels of every light's irradiance, luminance), `--stats`'s
+// rsm_flux_share.
 double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux);
 
 // The flux the frames so far measured, frame after frame of one renderer, as a weighted mean
 // per light in which each frame's flux counts kRsmChoiceMemory^age: the choice
 // (chooseRsmLights) ranks lights by what they sent into the last few views rather than into
-// one. A light of small reach meets few of a
-// frame's samples, or none, and one frame's measure ranks it by the samples' placement; a
-// playback whose choice followed that would render new maps and caches every frame, and its
-// indirect light would change with them. A light's mean starts again from its frame's flux
-// when the light changes (moves, or changes colour, intensity, range or cone), and every
-// light's when their count does: a light that changes every frame is ranked by its latest.
+// one. A light of small reach meets few of a frame's samples, or none, and one frame's
+// measure ranks it by the samples' placement; a playback whose choice followed that would
+// render new maps and caches every frame, and its indirect light would change with them. A light's
+// mean starts again from its frame's flux when the light changes (moves, or changes colour,
+// intensity, range or cone), and every light's when their count does: a light that changes every
+// frame is ranked by its latest.
 class RsmFluxHistory {
  public:
   // Adds a frame's `flux` (per light of `lights`, scene order) and returns the means.

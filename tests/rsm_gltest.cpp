@@ -23,7 +23,7 @@ TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 4}).lights, (std::vector<int>{3, 0}));
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {1, 0}).lights, (std::vector<int>{1, 0}));
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {5, 4}).lights, (std::vector<int>{0, 1}));
-  EXPECT_DOUBLE_EQ(chooseRsmLights(lights, flux, 2, {3, 4}).fluxShare, 15.0 / 78.0);
+  EXPECT_DOUBLE_EQ(fluxShare(chooseRsmLights(lights, flux, 2, {3, 4}).lights, flux), 15.0 / 78.0);
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 3}).lights, (std::vector<int>{3, 0}));
 }
 
