@@ -24,10 +24,9 @@ out vec4 oCorrection;
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
-  int width = textureSize(uPrevious, 0).x;
-  if (px.y * width + px.x >= uKept) discard;
+  if ((px.y << kCacheTextureShift) + px.x >= uKept) discard;
   int slot = int(texelFetch(uPrevious, px, 0).r);
-  ivec2 at = ivec2(slot % width, slot / width);
+  ivec2 at = cacheTexel(slot);
   oSh0 = texelFetch(uSh0, at, 0);
   oSh1 = texelFetch(uSh1, at, 0);
   oSh2 = texelFetch(uSh2, at, 0);

@@ -51,18 +51,17 @@ vec3 binNormal(int bin) {
 // node's cache of that bin where n is within kCorrectionCosine of the centre (all of it
 // there).
 vec3 cacheIrradiance(int first, vec3 n, int bin, float towards) {
-  int width = textureSize(uSh0, 0).x;
   // Only a normal within kCorrectionCosine of its bin's centre has that bin's cache at every
   // node around it (LightCaches' allocation); the others read the first.
   int cache = towards > kCorrectionCosine ? first : -1;
   for (int j = 0; j < 6 * kNormalBinGrid * kNormalBinGrid && cache >= 0; ++j) {
-    ivec2 at = ivec2(cache % width, cache / width);
+    ivec2 at = cacheTexel(cache);
     if (int(texelFetch(uCacheNormal, at, 0).w) == bin) break;
     cache = int(texelFetch(uCacheNext, at, 0).r);
   }
   bool corrected = cache >= 0;
   if (!corrected) cache = first;
-  ivec2 t = ivec2(cache % width, cache / width);
+  ivec2 t = cacheTexel(cache);
   vec4 a = texelFetch(uSh0, t, 0), b = texelFetch(uSh1, t, 0), c = texelFetch(uSh2, t, 0);
   vec3 coefficients[9] = vec3[9](a.rgb, vec3(a.a, b.rg), vec3(b.ba, c.r), c.gba, vec3(0.0),
                                  vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));

@@ -35,9 +35,8 @@ uniform int uCount[8];
 
 out vec4 oRadiance;
 
-ivec2 texelAt(sampler2D s, int i) {
-  int width = textureSize(s, 0).x;
-  return ivec2(i % width, i / width);
+ivec2 texelAt(int i) {
+  return ivec2(i & ((1 << kNearTextureShift) - 1), i >> kNearTextureShift);
 }
 
 // The near light of a texel (flux.rgb, area flux.w) at y, of normal nt, arriving at x of
@@ -60,7 +59,7 @@ vec3 cellLight(int base, int first, int last, vec3 x, vec3 n, float cascadeRadiu
   int j = first;
   int texel = 0, texels = 0;  // of the cluster being summed texel by texel
   while (j < last) {
-    ivec2 e = texelAt(uEntryCentre, texels > 0 ? texel : base + j);
+    ivec2 e = texelAt(texels > 0 ? texel : base + j);
     vec4 centre = texelFetch(uEntryCentre, e, 0);
     vec4 flux = texelFetch(uEntryFlux, e, 0);
     vec4 na = texelFetch(uEntryNormal, e, 0);

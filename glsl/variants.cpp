@@ -108,6 +108,8 @@ std::string layoutPrelude() {
   out += constLine("float", "kPlaneTolerance", floatLiteral(kPlaneTolerance));
   out += constLine("float", "kCorrectionCosine", floatLiteral(kCorrectionCosine));
   out += constLine("int", "kNormalBinGrid", std::to_string(kNormalBinGrid));
+  out += constLine("int", "kCacheTextureShift", std::to_string(kCacheTextureShift));
+  out += constLine("int", "kNearTextureShift", std::to_string(kNearTextureShift));
   out += constLine("int", "kRsmChoiceWidth", std::to_string(kRsmChoiceWidth));
   out += constLine("int", "kRsmClusterEdge", std::to_string(kRsmClusterEdge));
   out += constLine("float", "kRsmClusterDistance", floatLiteral(kRsmClusterDistance));

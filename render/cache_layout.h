@@ -24,6 +24,14 @@ inline constexpr float kCorrectionCosine = 0.981f;
 // Normal bins a cube face's side (odd, so that the axis is a bin's centre).
 inline constexpr int kNormalBinGrid = 3;
 
+// Textures addressed by a record's index i hold it at texel (i mod w, i / w), for a width w
+// of 2^shift: a shader finds it as (i & (w − 1), i >> shift), since llvmpipe has no vector
+// integer division and runs i % w and i / w lane by lane (a third of the near field's time).
+// The caches' textures (render/light_caches.h):
+inline constexpr int kCacheTextureShift = 9;
+// The near field's entries and texel records (render/near_field.h):
+inline constexpr int kNearTextureShift = 10;
+
 // The lights' flux target of the map choice (render/rsm_choice.h) is this many texels wide.
 inline constexpr int kRsmChoiceWidth = 1024;
 

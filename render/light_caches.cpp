@@ -143,7 +143,7 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
 
 namespace {
 
-constexpr int kCacheTextureWidth = 512;
+constexpr int kCacheTextureWidth = 1 << kCacheTextureShift;
 
 void allocate2d(const gl::Texture& t, int w, int h, const float* data) {
   glBindTexture(GL_TEXTURE_2D, t.id());

@@ -59,7 +59,7 @@ void NearField::add(const std::vector<float>& position, const std::vector<float>
 
 namespace {
 
-constexpr int kTextureWidth = 1024;
+constexpr int kTextureWidth = 1 << kNearTextureShift;
 
 // `texels` padded with zeros to whole rows of kTextureWidth, at least one.
 void upload2d(const gl::Texture& t, std::vector<glm::vec4>& texels) {
