@@ -90,7 +90,6 @@ std::vector<ProgramVariants> programs() {
                  {octreeDefines(0), octreeDefines(kOctreeHasSpecular)}});
   out.push_back({"fullscreen.vert", "rsm_flux.frag", {"oRadiance"}, {{}}});
   out.push_back({"fullscreen.vert", "indirect_exact.frag", {"oRadiance"}, {{}}});
-  out.push_back({"fullscreen.vert", "rsm_choice.frag", {"oFlux"}, {{}}});
   const std::vector<std::string> sh = {"oSh0", "oSh1", "oSh2", "oSh3",
                                        "oSh4", "oSh5", "oSh6", "oCorrection"};
   out.push_back({"fullscreen.vert", "cache_gather.frag", sh, {{}, {"SH_L2"}}});
@@ -110,7 +109,6 @@ std::string layoutPrelude() {
   out += constLine("int", "kNormalBinGrid", std::to_string(kNormalBinGrid));
   out += constLine("int", "kCacheTextureShift", std::to_string(kCacheTextureShift));
   out += constLine("int", "kNearTextureShift", std::to_string(kNearTextureShift));
-  out += constLine("int", "kRsmChoiceWidth", std::to_string(kRsmChoiceWidth));
   out += constLine("int", "kRsmClusterEdge", std::to_string(kRsmClusterEdge));
   out += constLine("float", "kRsmClusterDistance", floatLiteral(kRsmClusterDistance));
   out += constLine("float", "kMinDistanceSquared", floatLiteral(shading::kMinDistanceSquared));

@@ -32,7 +32,4 @@ inline constexpr int kCacheTextureShift = 9;
 // The near field's entries and texel records (render/near_field.h):
 inline constexpr int kNearTextureShift = 10;
 
-// The lights' flux target of the map choice (render/rsm_choice.h) is this many texels wide.
-inline constexpr int kRsmChoiceWidth = 1024;
-
 }  // namespace manylight

@@ -131,7 +131,7 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   const std::vector<float> normal = camera.read(GBuffer::kNormal);
   glBindVertexArray(emptyVao_.id());
   const RsmSamples samples = sampleRsmChoice(position, normal, lights.size());
-  const std::vector<double> flux = flux_.measure(gpu, lights, samples);
+  const std::vector<double> flux = measureLightFlux(lights, samples);
   const RsmChoice choice =
       chooseRsmLights(lights, fluxHistory_.add(lights, flux), settings.rsmLights, mapLights_);
   stats.candidates = choice.candidates;

@@ -100,7 +100,6 @@ class IndirectLight {
   gl::VertexArray emptyVao_;    // the full-screen triangle needs a bound VAO in core profile
   std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches
   NearField near_;
-  LightFlux flux_;
   RsmFluxHistory fluxHistory_;
 };
 

@@ -1,12 +1,10 @@
 #pragma once
 // Which lights get reflective shadow maps (render/rsm.h) in a frame of `--indirect`: the spot
 // and directional lights that send the most flux into the view, weighed over a sample of the
-// frame's covered pixels, every light at every sample on the GPU (glsl/rsm_choice.frag).
+// frame's covered pixels (measureLightFlux, on the CPU).
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "gl/objects.h"
-#include "render/gpu_scene.h"
 #include "scene/scene.h"
 
 namespace manylight {
@@ -44,7 +42,7 @@ RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<do
 inline constexpr double kRsmChoiceKeep = 0.5;
 
 // The share of Σ `flux` that the `chosen` lights have; 1 where the sum is 0. Of a frame's
-// LightFlux::measure, it is the chosen lights' share of the direct flux the view receives (of
+// measureLightFlux, it is the chosen lights' share of the direct flux the view receives (of
 // Σ over the sampled pixels of every light's irradiance, luminance), `--stats`'s
 // rsm_flux_share.
 double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux);
@@ -70,20 +68,10 @@ class RsmFluxHistory {
 // Weight of the frame before against this one's: the mean holds about the last ten frames.
 inline constexpr double kRsmChoiceMemory = 0.9;
 
-// The flux of every light on the GPU.
-class LightFlux {
- public:
-  LightFlux() = default;
-  // Per light of `lights` (scene order), which `gpu`'s light texture holds in
-  // lightOrder(lights): Σ over `samples` of the luminance of its irradiance, in float. Needs a
-  // bound vertex array; throws gl::GlError.
-  std::vector<double> measure(const GpuScene& gpu, const std::vector<Light>& lights,
-                              const RsmSamples& samples);
-
- private:
-  gl::Texture samples_, flux_;
-  gl::Framebuffer framebuffer_;
-  int height_ = 0;
-};
+// Per light of `lights` (scene order): Σ over `samples` of the luminance of its irradiance
+// (shading::irradiance, in double). A point or spot light of a range reads only the samples in
+// the cells of a grid over them that its range's box overlaps, so lights of small range cost
+// little; the others read every sample.
+std::vector<double> measureLightFlux(const std::vector<Light>& lights, const RsmSamples& samples);
 
 }  // namespace manylight
