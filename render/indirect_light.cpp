@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <glm/gtc/type_ptr.hpp>
+#include <utility>
 
 #include "bake/light_pack.h"
 #include "base/error.h"
@@ -151,9 +152,9 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     if (!caches_) caches_ = std::make_unique<LightCaches>();
     // Kept only from caches gathered from these very maps (an `exact` frame between may have
     // made others).
-    const CacheAllocation allocation = allocateCaches(grid, position, normal);
+    CacheAllocation allocation = allocateCaches(grid, position, normal);
     stats.cachesRefused = allocation.refused;
-    caches_->upload(grid, allocation, settings.shL2,
+    caches_->upload(grid, std::move(allocation), settings.shL2,
                     stats.mapsKept && cachesGeneration_ == mapGeneration_);
     cachesGeneration_ = mapGeneration_;
     stats.caches = caches_->count();

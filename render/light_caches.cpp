@@ -67,15 +67,15 @@ namespace {
 // `corrected` where its normal lies within kCorrectionCosine of the bin's centre: a node gets
 // a cache per bin of such pixels, listed from its CAV entry on, and one at least. (Every cache
 // of a node has the same coefficients; the others' pixels read its first.)
-void markCell(const CacheGrid& g, int k, glm::vec3 p, int bin, bool corrected, CacheAllocation& a) {
+void markCell(const CacheGrid& g, int k, glm::ivec3 base, int bin, bool corrected,
+              CacheAllocation& a) {
   const int n = g.nodesPerAxis();
-  const glm::vec3 cell = glm::floor((p - g.origin[std::size_t(k)]) / g.cell[std::size_t(k)]);
-  const glm::ivec3 base(cell);
   for (int corner = 0; corner < 8; ++corner) {
     const glm::ivec3 node =
         glm::clamp(base + glm::ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1),
                    glm::ivec3(0), glm::ivec3(g.resolution));
-    float& head = a.cav[std::size_t(((k * n + node.z) * n + node.y) * n + node.x)];
+    const std::size_t at = std::size_t(((k * n + node.z) * n + node.y) * n + node.x);
+    float& head = a.cav[at];
     bool listed = false;
     for (int c = int(head); c >= 0 && !listed; c = a.next[std::size_t(c)])
       listed = int(a.normals[std::size_t(c)].w) == bin;
@@ -84,6 +84,7 @@ void markCell(const CacheGrid& g, int k, glm::vec3 p, int bin, bool corrected, C
       ++a.refused;
       continue;
     }
+    if (head < 0.0f) a.nodes.push_back(at);
     a.next.push_back(int(head));
     head = float(a.positions.size());
     a.positions.push_back(
@@ -125,18 +126,40 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
   CacheAllocation a;
   const std::size_t n = std::size_t(grid.nodesPerAxis());
   a.cav.assign(n * n * n * std::size_t(grid.cascades), -1.0f);
+  // What the last pixel marked in each cascade: marking it again changes nothing, and most
+  // pixels share their cell and normal bin with the one before.
+  struct Marked {
+    glm::ivec3 cell{-1};
+    int bin = -1;
+    bool corrected = false;
+  };
+  std::vector<Marked> last(std::size_t(grid.cascades));
+  const auto mark = [&](int k, glm::vec3 p, int bin, bool corrected) {
+    const glm::ivec3 cell(
+        glm::floor((p - grid.origin[std::size_t(k)]) / grid.cell[std::size_t(k)]));
+    Marked& m = last[std::size_t(k)];
+    if (cell == m.cell && bin == m.bin && corrected == m.corrected) return;
+    m = {cell, bin, corrected};
+    markCell(grid, k, cell, bin, corrected, a);
+  };
+  glm::vec3 lastNormal(0.0f);
+  int bin = 0;
+  bool corrected = false;
   for (std::size_t i = 0; 4 * i + 3 < normal.size(); ++i) {
     if (normal[4 * i + 3] == 0.0f) continue;
     const glm::vec3 p(position[4 * i], position[4 * i + 1], position[4 * i + 2]);
     float band = 0.0f;
     const int k = cascadeOf(grid, p, &band);
     if (k == grid.cascades) continue;
-    const glm::vec3 nrm =
-        glm::normalize(glm::vec3(normal[4 * i], normal[4 * i + 1], normal[4 * i + 2]));
-    const int bin = normalBin(nrm);
-    const bool corrected = glm::dot(nrm, binNormal(bin)) > kCorrectionCosine;
-    markCell(grid, k, p, bin, corrected, a);
-    if (band > 0.0f && k + 1 < grid.cascades) markCell(grid, k + 1, p, bin, corrected, a);
+    const glm::vec3 raw(normal[4 * i], normal[4 * i + 1], normal[4 * i + 2]);
+    if (raw != lastNormal) {  // a flat surface's pixels share one normal
+      lastNormal = raw;
+      const glm::vec3 nrm = glm::normalize(raw);
+      bin = normalBin(nrm);
+      corrected = glm::dot(nrm, binNormal(bin)) > kCorrectionCosine;
+    }
+    mark(k, p, bin, corrected);
+    if (band > 0.0f && k + 1 < grid.cascades) mark(k + 1, p, bin, corrected);
   }
   return a;
 }
@@ -215,7 +238,7 @@ void LightCaches::allocateTargets(Targets& t, int height) {
   t.height = height;
 }
 
-void LightCaches::upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2, bool keep) {
+void LightCaches::upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2, bool keep) {
   keep = keep && shL2 == shL2_ && count_ > 0;
   grid_ = grid;
   shL2_ = shL2;
@@ -238,9 +261,8 @@ void LightCaches::upload(const CacheGrid& grid, const CacheAllocation& a, bool s
   for (std::size_t c = 0; c < count; ++c)
     if (before[c] < 0) slot[c] = next++;
   count_ = int(count);
-  std::vector<float> cav = a.cav;
-  for (float& v : cav)
-    if (v >= 0.0f) v = float(slot[std::size_t(v)]);
+  std::vector<float> cav = std::move(a.cav);
+  for (std::size_t node : a.nodes) cav[node] = float(slot[std::size_t(cav[node])]);
   const int n = grid.nodesPerAxis();
   glBindTexture(GL_TEXTURE_3D, cav_.id());
   glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n, n, n * grid.cascades, 0, GL_RED, GL_FLOAT, cav.data());

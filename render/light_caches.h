@@ -68,8 +68,9 @@ struct CacheAllocation {
   // per cache, the normal its correction is for (binNormal) and that bin: a node has a cache
   // per bin of the pixels marking it, so a pixel's caches do not depend on the view.
   std::vector<glm::vec4> normals;
-  std::vector<int> next;  // per cache, the next cache of its node, or −1
-  long long refused = 0;  // caches not made: kMaxCaches were
+  std::vector<int> next;           // per cache, the next cache of its node, or −1
+  std::vector<std::size_t> nodes;  // the nodes of a cache, as indices into cav
+  long long refused = 0;           // caches not made: kMaxCaches were
 };
 // Caches a frame holds at most (the per-process budget: their textures take at most 168 MB).
 // Past it, no pixel makes another: the pixels of a node without caches go without its light
@@ -99,7 +100,7 @@ class LightCaches {
   // maps are those the last upload's caches gathered) and the same basis, the caches at
   // nodes and bins the last upload also had keep their coefficients; the others start at 0.
   // Throws gl::GlError.
-  void upload(const CacheGrid& grid, const CacheAllocation& a, bool shL2, bool keep);
+  void upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2, bool keep);
   int count() const { return count_; }
   int kept() const { return kept_; }  // caches that kept their coefficients at the last upload
   const CacheGrid& grid() const { return grid_; }
