@@ -3,9 +3,9 @@
 // 1 − farWeight (the caches carry the rest), added (blend ONE, ONE) to the radiance target.
 // r is the larger of the texel's map radius and kNearCells cells of the pixel's cascade; in a
 // transition band the near light of both cascades is blended as the caches are. The texels
-// come in entries, clusters or texels alone, found in the cascade's grid: the cells within
-// the grid's reach of the pixel, and of those only the [uFirst[k], uFirst[k] + uCount[k]) th
-// entries in the cells' order are read, so one pass stays under llvmpipe's 65,535 loop
+// come in entries, clusters or texels alone, found in the cascade's grid: the cells listed for
+// the pixel's own cell that lie within the grid's reach of the pixel, and of those only the
+// [uFirst[k], uFirst[k] + uCount[k]) th entries in the cells' order are read, so one pass stays under llvmpipe's 65,535 loop
 // iterations. A pixel farther from a flat cluster than kRsmClusterDistance of its radii takes
 // its light as one texel's at its centre; nearer, it sums the cluster's texels.
 uniform sampler2D uPosition;
@@ -19,9 +19,12 @@ uniform sampler2D uEntryCentre;  // xyz, radius (0: a texel alone)
 uniform sampler2D uEntryNormal;
 // Σ flux, the map's near radius; negative where the cluster's texels do not share its facing
 uniform sampler2D uEntryFlux;
-// Per cascade's cell (stacked in z): its first entry, count, and the entries of the cells a
-// pixel in it may read (0: none, and it reads no cell)
+// Per cascade's cell (stacked in z): its first entry and count, and its neighbours' count and
+// first in uNeighbours
 uniform sampler3D uGrid;
+// Per cell, the cells (x, y, z within the cascade) holding entries whose box lies within the
+// cascade's reach of the cell's box: those a pixel in the cell reads
+uniform sampler2D uNeighbours;
 uniform sampler3D uPlanes;         // per cell: the plane its texels share (n, n·p), or 0
 uniform vec3 uGridOrigin;
 uniform float uGridCell[8];
@@ -87,40 +90,36 @@ vec3 cellLight(int base, int first, int last, vec3 x, vec3 n, float cascadeRadiu
 // Σ over the near entries of cascade k's grid: the irradiance times π.
 vec3 nearLight(int k, vec3 x, vec3 n) {
   ivec3 home = clamp(ivec3(floor((x - uGridOrigin) / uGridCell[k])), ivec3(0), uGridCells[k] - 1);
-  if (texelFetch(uGrid, home + ivec3(0, 0, uGridFirstZ[k]), 0).b == 0.0) return vec3(0.0);
+  vec4 homeCell = texelFetch(uGrid, home + ivec3(0, 0, uGridFirstZ[k]), 0);
+  int neighbours = int(homeCell.b);
+  int firstNeighbour = int(homeCell.a);
   float cascadeRadius = kNearCells * uCell[k];
-  ivec3 lo = max(ivec3(floor((x - uGridReach[k] - uGridOrigin) / uGridCell[k])), ivec3(0));
-  ivec3 hi = min(ivec3(floor((x + uGridReach[k] - uGridOrigin) / uGridCell[k])), uGridCells[k] - 1);
   int seen = 0;  // entries of the cells before this one
   float tolerance = kPlaneTolerance * uGridCell[k];
   float reach = uGridReach[k];
   vec3 sum = vec3(0.0);
-  for (int z = lo.z; z <= hi.z; ++z) {
-    for (int y = lo.y; y <= hi.y; ++y) {
-      for (int cx = lo.x; cx <= hi.x; ++cx) {
-        ivec3 cell = ivec3(cx, y, z + uGridFirstZ[k]);
-        vec2 range = texelFetch(uGrid, cell, 0).rg;
-        int count = int(range.y);
-        vec3 boxLo = uGridOrigin + vec3(cx, y, z) * uGridCell[k];
-        vec3 outside = max(max(boxLo - x, x - boxLo - uGridCell[k]), 0.0);
-        vec3 centre = boxLo + 0.5 * uGridCell[k] - x;
-        if (count == 0 || dot(outside, outside) >= reach * reach ||
-            dot(n, centre) + 0.5 * uGridCell[k] * dot(abs(n), vec3(1.0)) + uGridSpread[k] <=
-                0.0) {
-          // Empty, beyond every texel's reach, or with all its entries' texels behind x's
-          // surface: no light from it.
-          count = 0;
-        } else {
-          // In or behind the plane of all the cell's texels, x gets no light from them: each
-          // sends its light to the side its normal faces.
-          vec4 plane = texelFetch(uPlanes, cell, 0);
-          if (plane.xyz != vec3(0.0) && dot(plane.xyz, x) - plane.w <= tolerance) count = 0;
-        }
-        int first = max(uFirst[k] - seen, 0), last = min(uFirst[k] + uCount[k] - seen, count);
-        sum += cellLight(int(range.x), first, last, x, n, cascadeRadius);
-        seen += int(range.y);
-      }
+  for (int i = 0; i < neighbours; ++i) {
+    ivec3 at = ivec3(texelFetch(uNeighbours, texelAt(firstNeighbour + i), 0).xyz);
+    ivec3 cell = at + ivec3(0, 0, uGridFirstZ[k]);
+    vec2 range = texelFetch(uGrid, cell, 0).rg;
+    int count = int(range.y);
+    vec3 boxLo = uGridOrigin + vec3(at) * uGridCell[k];
+    vec3 outside = max(max(boxLo - x, x - boxLo - uGridCell[k]), 0.0);
+    vec3 centre = boxLo + 0.5 * uGridCell[k] - x;
+    if (dot(outside, outside) >= reach * reach ||
+        dot(n, centre) + 0.5 * uGridCell[k] * dot(abs(n), vec3(1.0)) + uGridSpread[k] <= 0.0) {
+      // Beyond every texel's reach, or with all its entries' texels behind x's surface: no
+      // light from it.
+      count = 0;
+    } else {
+      // In or behind the plane of all the cell's texels, x gets no light from them: each
+      // sends its light to the side its normal faces.
+      vec4 plane = texelFetch(uPlanes, cell, 0);
+      if (plane.xyz != vec3(0.0) && dot(plane.xyz, x) - plane.w <= tolerance) count = 0;
     }
+    int first = max(uFirst[k] - seen, 0), last = min(uFirst[k] + uCount[k] - seen, count);
+    sum += cellLight(int(range.x), first, last, x, n, cascadeRadius);
+    seen += int(range.y);
   }
   return sum;
 }

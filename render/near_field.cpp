@@ -147,6 +147,50 @@ std::vector<long long> windowSums(const std::vector<long long>& cost, glm::ivec3
   return sum;
 }
 
+// Per cell of a grid of `cells` cells of edge `cell`: the cells holding entries (`ranges`)
+// whose box lies within `reach` of its own, appended to `out` in the cells' order as (x, y, z,
+// 0). Returns per cell its first place in `out` and their count: a pixel in the cell reads
+// those cells only, instead of every cell of the window around it, most of them empty.
+std::vector<glm::vec2> neighbourLists(const std::vector<glm::vec2>& ranges, glm::ivec3 cells,
+                                      float cell, float reach, std::vector<glm::vec4>& out) {
+  const int m = int(std::ceil(reach / cell)) + 1;
+  const auto index = [&](glm::ivec3 c) {
+    return std::size_t((c.z * cells.y + c.y) * cells.x + c.x);
+  };
+  // Calls visit(h) for each cell h whose box lies within reach of source cell s's.
+  const auto forEachHome = [&](glm::ivec3 s, const auto& visit) {
+    const glm::ivec3 lo = glm::max(s - m, glm::ivec3(0)), hi = glm::min(s + m, cells - 1);
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+          const glm::vec3 gap =
+              glm::vec3(glm::max(glm::abs(glm::ivec3(x, y, z) - s) - 1, glm::ivec3(0))) * cell;
+          if (glm::dot(gap, gap) < reach * reach) visit(index(glm::ivec3(x, y, z)));
+        }
+  };
+  const auto forEachSource = [&](const auto& visit) {
+    for (int z = 0; z < cells.z; ++z)
+      for (int y = 0; y < cells.y; ++y)
+        for (int x = 0; x < cells.x; ++x)
+          if (ranges[index(glm::ivec3(x, y, z))].y > 0.0f) visit(glm::ivec3(x, y, z));
+  };
+  std::vector<glm::vec2> lists(ranges.size(), glm::vec2(0.0f));
+  forEachSource([&](glm::ivec3 s) { forEachHome(s, [&](std::size_t h) { lists[h].y += 1.0f; }); });
+  float first = float(out.size());
+  for (glm::vec2& l : lists) {
+    l.x = first;
+    first += l.y;
+  }
+  out.resize(std::size_t(first));
+  std::vector<float> next(lists.size());
+  for (std::size_t h = 0; h < lists.size(); ++h) next[h] = lists[h].x;
+  forEachSource([&](glm::ivec3 s) {
+    forEachHome(
+        s, [&](std::size_t h) { out[std::size_t(next[h]++)] = glm::vec4(glm::vec3(s), 0.0f); });
+  });
+  return lists;
+}
+
 long long largest(const std::vector<long long>& v) {
   return v.empty() ? 0 : *std::max_element(v.begin(), v.end());
 }
@@ -176,12 +220,10 @@ std::vector<NearField::Entry> NearField::cascadeEntries(float cell) const {
 // reading the cells within `m` of its own): per pass the first entry of a pixel's cells in
 // their order, and the count. Where no pixel's cells cost more than kNearTexelsPerPass loop
 // iterations (an entry's one, and a cluster's texels where it is summed texel by texel), one
-// pass reads them all; else each pass reads as many entries as cost that at most. `window`:
-// per cell, the entries within `m` cells of it (0: a pixel there has none to read).
+// pass reads them all; else each pass reads as many entries as cost that at most.
 void NearField::cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
                               const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
-                              std::vector<int>& first, std::vector<int>& count,
-                              std::vector<float>& window) {
+                              std::vector<int>& first, std::vector<int>& count) {
   constexpr long long kMostPerEntry = 1 + kRsmClusterEdge * kRsmClusterEdge;
   std::vector<long long> cost(ranges.size(), 0), held(ranges.size(), 0);
   for (std::size_t c = 0; c < ranges.size(); ++c) {
@@ -190,7 +232,6 @@ void NearField::cascadePasses(const std::vector<Entry>& entries, const std::vect
       cost[c] += entries[std::size_t(list[j])].centreRadius.w > 0.0f ? kMostPerEntry : 1;
   }
   const std::vector<long long> entriesNear = windowSums(held, cells, m);
-  window.assign(entriesNear.begin(), entriesNear.end());
   if (largest(windowSums(cost, cells, m)) <= kNearTexelsPerPass) {
     first.push_back(0);
     count.push_back(int(entries.size()));
@@ -232,10 +273,10 @@ std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
   return planes;
 }
 
-// Per cascade's cell, stacked in z in volumes of `size`: its first entry and their count
-// (grid_), and cellPlanes (planes_).
+// Per cascade's cell, stacked in z in volumes of `size`: its first entry and their count, then
+// its neighbourLists' count and first (grid_), and cellPlanes (planes_).
 void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
-                            const std::vector<std::vector<float>>& windows,
+                            const std::vector<std::vector<glm::vec2>>& lists,
                             const std::vector<std::vector<glm::vec4>>& planes) {
   std::vector<glm::vec4> volume(std::size_t(size.x) * std::size_t(size.y) * std::size_t(size.z),
                                 glm::vec4(0.0f)),
@@ -250,7 +291,7 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
                   std::size_t(size.x) +
               std::size_t(x);
           const std::size_t c = std::size_t((z * cells.y + y) * cells.x + x);
-          volume[at] = glm::vec4(ranges[k][c], windows[k][c], 0.0f);
+          volume[at] = glm::vec4(ranges[k][c], lists[k][c].y, lists[k][c].x);
           planeVolume[at] = planes[k][c];
         }
   }
@@ -260,10 +301,10 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
 
 // The entries of every cascade, in their cells' order, then the texels of the clusters as
 // records of their own, kRsmClusterEdge² a cluster.
-void NearField::uploadEntries(const std::vector<Entry>& ordered) {
+void NearField::uploadEntries(const std::vector<Entry>& ordered, std::size_t neighbours) {
   constexpr int kSlots = kRsmClusterEdge * kRsmClusterEdge;
-  // Records are numbered in float texels: exact up to 2^24.
-  const std::size_t records = ordered.size() + clusters_.size() * kSlots;
+  // Records and neighbours are numbered in float texels: exact up to 2^24.
+  const std::size_t records = std::max(ordered.size() + clusters_.size() * kSlots, neighbours);
   if (records > std::size_t(1) << 24)
     throw gl::GlError("the near field needs " + std::to_string(records) +
                       " records, past 16,777,216: use fewer or smaller maps (--rsm-lights, "
@@ -313,7 +354,8 @@ void NearField::upload(const CacheGrid& grid) {
   std::vector<Entry> ordered;                  // every cascade's entries in its cells' order
   std::vector<std::vector<glm::vec2>> ranges;  // per cascade, per cell: first entry, count
   std::vector<std::vector<glm::vec4>> planes;  // per cascade, per cell: cellPlanes
-  std::vector<std::vector<float>> windows;     // per cascade, per cell: cascadePasses' window
+  std::vector<std::vector<glm::vec2>> lists;   // per cascade, per cell: neighbourLists
+  std::vector<glm::vec4> neighbours;           // every cascade's neighbourLists
   cell_.clear(), reach_.clear(), spread_.clear(), cells_.clear(), firstZ_.clear();
   std::vector<std::vector<int>> first, count;  // per cascade, per pass
   glm::ivec3 size(1, 1, 0);
@@ -332,9 +374,10 @@ void NearField::upload(const CacheGrid& grid) {
     std::vector<glm::vec2> r = binCascade(points, lo, hi, reach, list, cell, cells);
     planes.push_back(cellPlanes(entries, list, r, kPlaneTolerance * cell));
     for (const Entry& e : entries) clusterEntries_ += e.centreRadius.w > 0.0f;
-    first.emplace_back(), count.emplace_back(), windows.emplace_back();
+    first.emplace_back(), count.emplace_back();
     cascadePasses(entries, list, r, cells, int(std::ceil(reach / cell)) + 1, first.back(),
-                  count.back(), windows.back());
+                  count.back());
+    lists.push_back(neighbourLists(r, cells, cell, reach, neighbours));
     for (glm::vec2& range : r) range.x += float(ordered.size());
     for (int i : list) ordered.push_back(entries[std::size_t(i)]);
     cell_.push_back(cell), reach_.push_back(reach), spread_.push_back(spread);
@@ -352,8 +395,9 @@ void NearField::upload(const CacheGrid& grid) {
       passFirst_[p][k] = first[k][p];
       passCount_[p][k] = count[k][p];
     }
-  uploadEntries(ordered);
-  uploadGrids(size, ranges, windows, planes);
+  uploadEntries(ordered, neighbours.size());
+  upload2d(neighbours_, neighbours);
+  uploadGrids(size, ranges, lists, planes);
 }
 
 int NearField::draw(const GBuffer& camera) {
@@ -366,6 +410,7 @@ int NearField::draw(const GBuffer& camera) {
   bindSampler(p, "uEntryFlux", GL_TEXTURE_2D, fluxes_.id(), 5);
   bindSampler(p, "uGrid", GL_TEXTURE_3D, grid_.id(), 6);
   bindSampler(p, "uPlanes", GL_TEXTURE_3D, planes_.id(), 7);
+  bindSampler(p, "uNeighbours", GL_TEXTURE_2D, neighbours_.id(), 8);
   setCascadeUniforms(p, cascades_);
   const int k = std::min(cascades_.cascades, int(cell_.size()));
   glUniform3fv(p.uniform("uGridOrigin"), 1, glm::value_ptr(origin_));

@@ -97,20 +97,19 @@ class NearField {
   // Per pass, per cascade: its first entry and the count (in the cascade's cells' order).
   std::vector<std::vector<int>> passFirst_, passCount_;
   // Per cascade, its entries ordered by the cascade's grid cell (the entry textures); per
-  // cell, its range of them and its plane.
-  gl::Texture centres_, normals_, fluxes_, grid_, planes_;
+  // cell, its range of them, its neighbour list's, and its plane; the neighbour lists.
+  gl::Texture centres_, normals_, fluxes_, grid_, planes_, neighbours_;
   std::vector<Entry> cascadeEntries(float cell) const;
   static void cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
                             const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
-                            std::vector<int>& first, std::vector<int>& count,
-                            std::vector<float>& window);
+                            std::vector<int>& first, std::vector<int>& count);
   std::vector<glm::vec4> cellPlanes(const std::vector<Entry>& entries,
                                     const std::vector<int>& lists,
                                     const std::vector<glm::vec2>& ranges, float tolerance) const;
   void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
-                   const std::vector<std::vector<float>>& windows,
+                   const std::vector<std::vector<glm::vec2>>& lists,
                    const std::vector<std::vector<glm::vec4>>& planes);
-  void uploadEntries(const std::vector<Entry>& ordered);
+  void uploadEntries(const std::vector<Entry>& ordered, std::size_t neighbours);
 };
 
 }  // namespace manylight
