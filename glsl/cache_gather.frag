@@ -15,17 +15,15 @@ uniform sampler2D uCachePosition;
 uniform sampler2D uCacheNormal;  // the normal the cache's correction is exact for
 uniform int uFirstCache;  // the caches before it kept their light from the frame before
 uniform int uCacheCount;
-uniform sampler2D uRsmPosition;
-uniform sampler2D uRsmNormal;
-uniform sampler2D uRsmFlux;
 uniform int uRsmSize;
 uniform int uFirstRow;
 uniform int uRows;
 uniform float uNearRadius;
-// The map's clusters (render/rsm_clusters.h), kRsmClusterEdge² texels each:
-uniform sampler2D uClusterCentre;  // xyz, radius (< 0: none reflects)
+// The map's clusters (render/rsm_clusters.h), kRsmClusterEdge² texels each, and their texels
+// (render/rsm.h, RsmClusterTextures):
+uniform sampler2D uClusterCentre;  // xyz, radius (< 0: none reflects); a texel's position
 uniform sampler2D uClusterNormal;  // mean unit normal, 1 where its texels share its facing
-uniform sampler2D uClusterFlux;    // Σ flux, mean texel area
+uniform sampler2D uClusterFlux;    // Σ flux, mean texel area; a texel's flux and area
 
 out vec4 oSh0;
 out vec4 oSh1;
@@ -77,25 +75,33 @@ void main() {
   float r = max(uNearRadius, kNearCells * node.w);
   vec3 c[9] = vec3[9](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
                       vec3(0.0), vec3(0.0), vec3(0.0));
-  const int kEdge = kRsmClusterEdge;
-  for (int by = uFirstRow / kEdge; by < (uFirstRow + uRows) / kEdge; ++by) {
-    for (int bx = 0; bx < uRsmSize / kEdge; ++bx) {
-      ivec2 b = ivec2(bx, by);
-      vec4 centre = texelFetch(uClusterCentre, b, 0);
-      if (centre.w < 0.0) continue;
-      vec4 mean = texelFetch(uClusterNormal, b, 0);
-      float d = length(centre.xyz - q);
-      if (mean.w > 0.0 && d > max(kRsmClusterDistance * centre.w, 2.0 * r + centre.w)) {
-        addTexel(texelFetch(uClusterFlux, b, 0), centre.xyz, mean.xyz, q, r, nc, c, exact);
-        continue;
-      }
-      for (int j = 0; j < kEdge * kEdge; ++j) {
-        ivec2 t = b * kEdge + ivec2(j % kEdge, j / kEdge);
-        vec4 flux = texelFetch(uRsmFlux, t, 0);
-        if (flux.w == 0.0) continue;
-        addTexel(flux, texelFetch(uRsmPosition, t, 0).xyz, texelFetch(uRsmNormal, t, 0).xyz, q,
-                 r, nc, c, exact);
-      }
+  // One loop over the clusters of the pass's rows, and the texels of a cluster being summed
+  // texel by texel, one record an iteration: llvmpipe runs an inner loop for every lane
+  // whenever one lane takes it, and neighbouring caches sum different clusters.
+  const int kSlots = kRsmClusterEdge * kRsmClusterEdge;
+  int side = uRsmSize / kRsmClusterEdge;
+  ivec2 b = ivec2(0, uFirstRow / kRsmClusterEdge);
+  int lastRow = (uFirstRow + uRows) / kRsmClusterEdge;
+  int texel = -1;  // of the cluster being summed, or −1
+  while (b.y < lastRow) {
+    ivec2 at = texel < 0 ? b : ivec2(kSlots * b.x + texel, side + b.y);
+    vec4 centre = texelFetch(uClusterCentre, at, 0);
+    vec4 mean = texelFetch(uClusterNormal, at, 0);
+    vec4 flux = texelFetch(uClusterFlux, at, 0);
+    float d = length(centre.xyz - q);
+    // A cluster that reflects, not wholly within r (where the far weight is 0), and too near
+    // to count as one texel or not flat: summed texel by texel.
+    bool expand = texel < 0 && centre.w >= 0.0 && d + centre.w > r &&
+                  !(mean.w > 0.0 && d > max(kRsmClusterDistance * centre.w, 2.0 * r + centre.w));
+    bool whole = texel < 0 && centre.w >= 0.0 && !expand;
+    if (whole || (texel >= 0 && flux.w != 0.0)) addTexel(flux, centre.xyz, mean.xyz, q, r, nc, c, exact);
+    if (expand) {
+      texel = 0;
+    } else if (texel >= 0 && texel + 1 < kSlots) {
+      ++texel;
+    } else {
+      texel = -1;
+      if (++b.x == side) b = ivec2(0, b.y + 1);
     }
   }
   // The coefficients' 27 floats, RGB after RGB, in seven texels (three for SH L1).

@@ -116,7 +116,7 @@ void IndirectLight::renderMaps(const Scene& scene, const GpuScene& gpu,
     const RsmClusters clusters = clusterRsm(position, normal, flux, rsmSize_);
     near_.add(position, normal, flux, clusters, m.nearRadius);
     if (!m.clusters) m.clusters = std::make_unique<RsmClusterTextures>();
-    m.clusters->upload(clusters);
+    m.clusters->upload(clusters, position, normal, flux);
   }
 }
 

@@ -60,13 +60,37 @@ int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUn
   return passes;
 }
 
-void RsmClusterTextures::upload(const RsmClusters& clusters) {
-  const std::vector<glm::vec4>* data[] = {&clusters.centre, &clusters.normal, &clusters.flux};
+void RsmClusterTextures::upload(const RsmClusters& clusters, const std::vector<float>& mapPosition,
+                                const std::vector<float>& mapNormal,
+                                const std::vector<float>& mapFlux) {
+  constexpr int kSlots = kRsmClusterEdge * kRsmClusterEdge;
+  const int s = clusters.size, width = kSlots * s, height = 2 * s;
+  std::vector<glm::vec4> data[3];
+  for (std::vector<glm::vec4>& d : data)
+    d.assign(std::size_t(width) * std::size_t(height), glm::vec4(0.0f));
+  const std::vector<float>* texels[] = {&mapPosition, &mapNormal, &mapFlux};
+  const std::vector<glm::vec4>* records[] = {&clusters.centre, &clusters.normal, &clusters.flux};
+  for (int by = 0; by < s; ++by) {
+    for (int bx = 0; bx < s; ++bx) {
+      const std::size_t cluster = std::size_t(by * s + bx);
+      for (int i = 0; i < 3; ++i) {
+        data[i][std::size_t(by * width + bx)] = (*records[i])[cluster];
+        for (int j = 0; j < kSlots; ++j) {
+          // Texel j of the block, as glsl/cache_gather.frag numbers it.
+          const std::size_t t =
+              std::size_t((kRsmClusterEdge * by + j / kRsmClusterEdge) * kRsmClusterEdge * s +
+                          kRsmClusterEdge * bx + j % kRsmClusterEdge);
+          data[i][std::size_t((s + by) * width + kSlots * bx + j)] =
+              glm::vec4((*texels[i])[4 * t], (*texels[i])[4 * t + 1], (*texels[i])[4 * t + 2],
+                        (*texels[i])[4 * t + 3]);
+        }
+      }
+    }
+  }
   const gl::Texture* textures[] = {&centre, &normal, &flux};
   for (int i = 0; i < 3; ++i) {
     glBindTexture(GL_TEXTURE_2D, textures[i]->id());
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, clusters.size, clusters.size, 0, GL_RGBA, GL_FLOAT,
-                 data[i]->data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, data[i].data());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   }

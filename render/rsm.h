@@ -36,11 +36,17 @@ inline constexpr float kMaxRsmHalfAngle = 1.3089969f;  // 75°
 int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUnit,
                      int rowAlign = 1, double iterationsPerTexel = 1.0);
 
-// A map's clusters (render/rsm_clusters.h) as three RGBA32F textures of clusters a side.
+// A map's clusters (render/rsm_clusters.h) and its texels, as records of three RGBA32F
+// textures (centre or position; normal; flux), kRsmClusterEdge² · s wide and 2s high for s
+// clusters a side: cluster (bx, by) at texel (bx, by), its texel j (glsl/cache_gather.frag's
+// numbering) at (kRsmClusterEdge² · bx + j, s + by). So the gather reads a cluster and its
+// texels from the same textures, in one loop.
 struct RsmClusterTextures {
   gl::Texture centre, normal, flux;
+  // `clusters` of a map read back as RGBA floats (`mapPosition`, `mapNormal`, `mapFlux`).
   // Throws gl::GlError.
-  void upload(const RsmClusters& clusters);
+  void upload(const RsmClusters& clusters, const std::vector<float>& mapPosition,
+              const std::vector<float>& mapNormal, const std::vector<float>& mapFlux);
 };
 
 }  // namespace manylight
