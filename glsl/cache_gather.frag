@@ -79,12 +79,14 @@ void main() {
   // texel by texel, one record an iteration: llvmpipe runs an inner loop for every lane
   // whenever one lane takes it, and neighbouring caches sum different clusters.
   const int kSlots = kRsmClusterEdge * kRsmClusterEdge;
-  int side = uRsmSize / kRsmClusterEdge;
+  int side = uRsmSize / kRsmClusterEdge;  // clusters a side (render/rsm.h's layout)
+  int clusterRows = (side + kSlots - 1) / kSlots;
   ivec2 b = ivec2(0, uFirstRow / kRsmClusterEdge);
   int lastRow = (uFirstRow + uRows) / kRsmClusterEdge;
   int texel = -1;  // of the cluster being summed, or −1
   while (b.y < lastRow) {
-    ivec2 at = texel < 0 ? b : ivec2(kSlots * b.x + texel, side + b.y);
+    ivec2 at = texel < 0 ? ivec2(side * (b.y % kSlots) + b.x, b.y / kSlots)
+                         : ivec2(kSlots * b.x + texel, clusterRows + b.y);
     vec4 centre = texelFetch(uClusterCentre, at, 0);
     vec4 mean = texelFetch(uClusterNormal, at, 0);
     vec4 flux = texelFetch(uClusterFlux, at, 0);

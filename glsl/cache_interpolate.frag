@@ -15,8 +15,7 @@ uniform sampler2D uSh4;
 uniform sampler2D uSh5;
 uniform sampler2D uSh6;
 uniform sampler2D uCorrection;   // per cache: exact less SH irradiance for its normal
-uniform sampler2D uCacheNormal;  // per cache: that normal, and its bin
-uniform sampler2D uCacheNext;    // per cache: the next cache of its node, or −1
+uniform sampler2D uCacheNext;    // per cache: the next cache of its node (or −1), its bin
 uniform int uResolution;  // R: cells per axis of a cascade
 uniform vec3 uOrigin[8];  // per cascade, its node (0, 0, 0)
 
@@ -55,9 +54,9 @@ vec3 cacheIrradiance(int first, vec3 n, int bin, float towards) {
   // node around it (LightCaches' allocation); the others read the first.
   int cache = towards > kCorrectionCosine ? first : -1;
   for (int j = 0; j < 6 * kNormalBinGrid * kNormalBinGrid && cache >= 0; ++j) {
-    ivec2 at = cacheTexel(cache);
-    if (int(texelFetch(uCacheNormal, at, 0).w) == bin) break;
-    cache = int(texelFetch(uCacheNext, at, 0).r);
+    vec2 link = texelFetch(uCacheNext, cacheTexel(cache), 0).rg;
+    if (int(link.y) == bin) break;
+    cache = int(link.x);
   }
   bool corrected = cache >= 0;
   if (!corrected) cache = first;

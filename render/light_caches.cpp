@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/type_ptr.hpp>
+#include <limits>
 #include <unordered_map>
 
 #include "gl/context.h"
@@ -142,7 +143,7 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
     m = {cell, bin, corrected};
     markCell(grid, k, cell, bin, corrected, a);
   };
-  glm::vec3 lastNormal(0.0f);
+  glm::vec3 lastNormal(std::numeric_limits<float>::quiet_NaN());  // equal to none
   int bin = 0;
   bool corrected = false;
   for (std::size_t i = 0; 4 * i + 3 < normal.size(); ++i) {
@@ -279,6 +280,7 @@ void LightCaches::upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2, 
     std::copy_n(glm::value_ptr(a.positions[c]), 4, &texels[4 * s]);
     std::copy_n(glm::value_ptr(a.normals[c]), 4, &normals[4 * s]);
     links[4 * s] = a.next[c] >= 0 ? float(slot[std::size_t(a.next[c])]) : -1.0f;
+    links[4 * s + 1] = a.normals[c].w;  // its bin, beside the link: one read a step of a walk
     previous[4 * s] = float(before[c]);
     keys_[s] = nodeKey(a.positions[c], a.normals[c]);
   }
@@ -352,8 +354,7 @@ void LightCaches::interpolate(const GBuffer& camera) {
   const std::vector<gl::Texture>& sh = targets_[current_].sh;
   for (std::size_t i = 0; i < kCacheTargets; ++i)
     bindSampler(p, kShNames[i], GL_TEXTURE_2D, sh[i].id(), 4 + int(i));
-  bindSampler(p, "uCacheNormal", GL_TEXTURE_2D, normals_.id(), 4 + int(kCacheTargets));
-  bindSampler(p, "uCacheNext", GL_TEXTURE_2D, links_.id(), 5 + int(kCacheTargets));
+  bindSampler(p, "uCacheNext", GL_TEXTURE_2D, links_.id(), 4 + int(kCacheTargets));
   setCascadeUniforms(p, grid_);
   glUniform1i(p.uniform("uResolution"), grid_.resolution);
   glUniform3fv(p.uniform("uOrigin"), grid_.cascades, glm::value_ptr(grid_.origin[0]));

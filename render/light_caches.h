@@ -70,7 +70,8 @@ struct CacheAllocation {
   std::vector<glm::vec4> normals;
   std::vector<int> next;           // per cache, the next cache of its node, or −1
   std::vector<std::size_t> nodes;  // the nodes of a cache, as indices into cav
-  long long refused = 0;           // caches not made: kMaxCaches were
+  // caches not made as kMaxCaches were, counted once per run of pixels that share a cell and bin
+  long long refused = 0;
 };
 // Caches a frame holds at most (the per-process budget: their textures take at most 168 MB).
 // Past it, no pixel makes another: the pixels of a node without caches go without its light
@@ -127,7 +128,8 @@ class LightCaches {
   int count_ = 0, kept_ = 0, width_ = 0, height_ = 0;
   std::vector<NodeKey> keys_;  // per cache, its node
   // previous_: per kept cache, its slot the frame before
-  gl::Texture cav_, positions_, normals_, links_, previous_;  // links_: CacheAllocation::next
+  // links_: CacheAllocation::next, and the bin (normals_.w) beside it
+  gl::Texture cav_, positions_, normals_, links_, previous_;
   Targets targets_[2];
   int current_ = 0;  // targets_[current_] holds this frame's coefficients
 };

@@ -60,6 +60,8 @@ void NearField::add(const std::vector<float>& position, const std::vector<float>
 namespace {
 
 constexpr int kTextureWidth = 1 << kNearTextureShift;
+// Records a texture of the near field holds at most: their indices are floats.
+constexpr std::size_t kMostRecords = std::size_t(1) << 24;
 
 // `texels` padded with zeros to whole rows of kTextureWidth, at least one.
 void upload2d(const gl::Texture& t, std::vector<glm::vec4>& texels) {
@@ -174,19 +176,25 @@ std::vector<glm::vec2> neighbourLists(const std::vector<glm::vec2>& ranges, glm:
         for (int x = 0; x < cells.x; ++x)
           if (ranges[index(glm::ivec3(x, y, z))].y > 0.0f) visit(glm::ivec3(x, y, z));
   };
-  std::vector<glm::vec2> lists(ranges.size(), glm::vec2(0.0f));
-  forEachSource([&](glm::ivec3 s) { forEachHome(s, [&](std::size_t h) { lists[h].y += 1.0f; }); });
-  float first = float(out.size());
-  for (glm::vec2& l : lists) {
-    l.x = first;
-    first += l.y;
+  std::vector<std::size_t> count(ranges.size(), 0);
+  forEachSource([&](glm::ivec3 s) { forEachHome(s, [&](std::size_t h) { ++count[h]; }); });
+  std::vector<std::size_t> next(ranges.size());
+  std::size_t first = out.size();
+  for (std::size_t h = 0; h < count.size(); ++h) {
+    next[h] = first;
+    first += count[h];
   }
-  out.resize(std::size_t(first));
-  std::vector<float> next(lists.size());
-  for (std::size_t h = 0; h < lists.size(); ++h) next[h] = lists[h].x;
+  // Listed by float texels: exact up to 2^24.
+  if (first > kMostRecords)
+    throw gl::GlError("the near field needs " + std::to_string(first) +
+                      " cell lists, past 16,777,216: use fewer or smaller maps (--rsm-lights, "
+                      "--rsm-size)");
+  std::vector<glm::vec2> lists(ranges.size());
+  for (std::size_t h = 0; h < count.size(); ++h)
+    lists[h] = glm::vec2(float(next[h]), float(count[h]));
+  out.resize(first);
   forEachSource([&](glm::ivec3 s) {
-    forEachHome(
-        s, [&](std::size_t h) { out[std::size_t(next[h]++)] = glm::vec4(glm::vec3(s), 0.0f); });
+    forEachHome(s, [&](std::size_t h) { out[next[h]++] = glm::vec4(glm::vec3(s), 0.0f); });
   });
   return lists;
 }
@@ -301,11 +309,11 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
 
 // The entries of every cascade, in their cells' order, then the texels of the clusters as
 // records of their own, kRsmClusterEdge² a cluster.
-void NearField::uploadEntries(const std::vector<Entry>& ordered, std::size_t neighbours) {
+void NearField::uploadEntries(const std::vector<Entry>& ordered) {
   constexpr int kSlots = kRsmClusterEdge * kRsmClusterEdge;
-  // Records and neighbours are numbered in float texels: exact up to 2^24.
-  const std::size_t records = std::max(ordered.size() + clusters_.size() * kSlots, neighbours);
-  if (records > std::size_t(1) << 24)
+  // Records are numbered in float texels: exact up to 2^24.
+  const std::size_t records = ordered.size() + clusters_.size() * kSlots;
+  if (records > kMostRecords)
     throw gl::GlError("the near field needs " + std::to_string(records) +
                       " records, past 16,777,216: use fewer or smaller maps (--rsm-lights, "
                       "--rsm-size)");
@@ -395,7 +403,7 @@ void NearField::upload(const CacheGrid& grid) {
       passFirst_[p][k] = first[k][p];
       passCount_[p][k] = count[k][p];
     }
-  uploadEntries(ordered, neighbours.size());
+  uploadEntries(ordered);
   upload2d(neighbours_, neighbours);
   uploadGrids(size, ranges, lists, planes);
 }

@@ -109,7 +109,7 @@ class NearField {
   void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
                    const std::vector<std::vector<glm::vec2>>& lists,
                    const std::vector<std::vector<glm::vec4>>& planes);
-  void uploadEntries(const std::vector<Entry>& ordered, std::size_t neighbours);
+  void uploadEntries(const std::vector<Entry>& ordered);
 };
 
 }  // namespace manylight

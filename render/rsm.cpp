@@ -64,7 +64,10 @@ void RsmClusterTextures::upload(const RsmClusters& clusters, const std::vector<f
                                 const std::vector<float>& mapNormal,
                                 const std::vector<float>& mapFlux) {
   constexpr int kSlots = kRsmClusterEdge * kRsmClusterEdge;
-  const int s = clusters.size, width = kSlots * s, height = 2 * s;
+  // Cluster (bx, by) at (s · (by mod kSlots) + bx, by / kSlots): kSlots rows of clusters a
+  // row of texels; then its texels from row clusterRows on.
+  const int s = clusters.size, width = kSlots * s, clusterRows = (s + kSlots - 1) / kSlots,
+            height = clusterRows + s;
   std::vector<glm::vec4> data[3];
   for (std::vector<glm::vec4>& d : data)
     d.assign(std::size_t(width) * std::size_t(height), glm::vec4(0.0f));
@@ -74,13 +77,14 @@ void RsmClusterTextures::upload(const RsmClusters& clusters, const std::vector<f
     for (int bx = 0; bx < s; ++bx) {
       const std::size_t cluster = std::size_t(by * s + bx);
       for (int i = 0; i < 3; ++i) {
-        data[i][std::size_t(by * width + bx)] = (*records[i])[cluster];
+        data[i][std::size_t((by / kSlots) * width + s * (by % kSlots) + bx)] =
+            (*records[i])[cluster];
         for (int j = 0; j < kSlots; ++j) {
           // Texel j of the block, as glsl/cache_gather.frag numbers it.
           const std::size_t t =
               std::size_t((kRsmClusterEdge * by + j / kRsmClusterEdge) * kRsmClusterEdge * s +
                           kRsmClusterEdge * bx + j % kRsmClusterEdge);
-          data[i][std::size_t((s + by) * width + kSlots * bx + j)] =
+          data[i][std::size_t((clusterRows + by) * width + kSlots * bx + j)] =
               glm::vec4((*texels[i])[4 * t], (*texels[i])[4 * t + 1], (*texels[i])[4 * t + 2],
                         (*texels[i])[4 * t + 3]);
         }

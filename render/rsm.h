@@ -37,10 +37,11 @@ int drawRsmRowPasses(const gl::Program& program, const GBuffer& rsm, int firstUn
                      int rowAlign = 1, double iterationsPerTexel = 1.0);
 
 // A map's clusters (render/rsm_clusters.h) and its texels, as records of three RGBA32F
-// textures (centre or position; normal; flux), kRsmClusterEdge² · s wide and 2s high for s
-// clusters a side: cluster (bx, by) at texel (bx, by), its texel j (glsl/cache_gather.frag's
-// numbering) at (kRsmClusterEdge² · bx + j, s + by). So the gather reads a cluster and its
-// texels from the same textures, in one loop.
+// textures (centre or position; normal; flux), for s clusters a side and n = kRsmClusterEdge²
+// texels a cluster n · s wide and ⌈s / n⌉ + s high: cluster (bx, by) at texel
+// (s · (by mod n) + bx, by / n), its texel j (glsl/cache_gather.frag's numbering) at
+// (n · bx + j, ⌈s / n⌉ + by). So the gather reads a cluster and its texels from the same
+// textures, in one loop, and they take about as much memory as the map.
 struct RsmClusterTextures {
   gl::Texture centre, normal, flux;
   // `clusters` of a map read back as RGBA floats (`mapPosition`, `mapNormal`, `mapFlux`).

@@ -139,8 +139,11 @@ class SampleGrid {
       for (int y = a.y; y <= b.y; ++y)
         for (int x = a.x; x <= b.x; ++x) visit(index(glm::ivec3(x, y, z)));
   }
+  // Clamped in double before the conversion: a light of a huge range reaches far past the
+  // int's range of cells.
   glm::ivec3 cellAt(glm::dvec3 p) const {
-    return glm::clamp(glm::ivec3(glm::floor((p - lo_) / cell_)), glm::ivec3(0), cells_ - 1);
+    return glm::ivec3(
+        glm::clamp(glm::floor((p - lo_) / cell_), glm::dvec3(0.0), glm::dvec3(cells_ - 1)));
   }
   int index(glm::ivec3 c) const { return (c.z * cells_.y + c.y) * cells_.x + c.x; }
   glm::dvec3 lo_, hi_, cell_;

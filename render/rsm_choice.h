@@ -69,9 +69,9 @@ class RsmFluxHistory {
 inline constexpr double kRsmChoiceMemory = 0.9;
 
 // Per light of `lights` (scene order): Σ over `samples` of the luminance of its irradiance
-// (shading::irradiance, in double). A point or spot light of a range reads only the samples in
-// the cells of a grid over them that its range's box overlaps, so lights of small range cost
-// little; the others read every sample.
+// (shading::irradiance's, in float, as the shaders evaluate it). A point or spot light of a
+// range whose box holds under an eighth of the samples, binned in a grid over them, reads the
+// samples of the cells its box overlaps only; the others read every sample.
 std::vector<double> measureLightFlux(const std::vector<Light>& lights, const RsmSamples& samples);
 
 }  // namespace manylight

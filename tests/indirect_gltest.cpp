@@ -293,6 +293,15 @@ TEST(Indirect, TheChoiceWeighsTheLightsAsTheShadingModelDoes) {
         << "light " << i;
   }
   EXPECT_EQ(measureLightFlux(scene.lights, RsmSamples{}), std::vector<double>(4096, 0.0));
+  // A point light of a range past the int's count of grid cells reads every sample, as one of
+  // no range does.
+  std::vector<Light> far(2, scene.lights[0]);
+  far[0].type = far[1].type = LightType::Point;
+  far[0].range = 1e10f;
+  far[1].range = 0.0f;
+  const std::vector<double> farFlux = measureLightFlux(far, samples);
+  EXPECT_GT(farFlux[1], 0.0);
+  EXPECT_NEAR(farFlux[0], farFlux[1], 1e-6 * farFlux[1]);
 }
 
 // |caches − exact| per covered pixel over the pixel's total (direct + indirect) radiance:
