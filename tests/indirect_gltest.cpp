@@ -280,28 +280,6 @@ TEST(Indirect, TheChoiceWeighsTheLightsAsTheShadingModelDoes) {
   EXPECT_LE(worst, 1e-6);
   EXPECT_EQ(chooseRsmLights(scene.lights, measured, 4).lights,
             chooseRsmLights(scene.lights, oracle, 4).lights);
-  // Samples all at one point (a grid of one cell of no size) and no samples.
-  RsmSamples one;
-  one.position.assign(3, samples.position[0]);
-  one.normal.assign(3, samples.normal[0]);
-  const std::vector<double> flux = measureLightFlux(scene.lights, one);
-  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    glm::dvec3 l;
-    const glm::dvec3 e = shading::irradiance(scene.lights[i], glm::dvec3(one.position[0]),
-                                             glm::dvec3(one.normal[0]), l);
-    ASSERT_NEAR(flux[i], 3.0 * (0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b), 1e-6 * largest)
-        << "light " << i;
-  }
-  EXPECT_EQ(measureLightFlux(scene.lights, RsmSamples{}), std::vector<double>(4096, 0.0));
-  // A point light of a range past the int's count of grid cells reads every sample, as one of
-  // no range does.
-  std::vector<Light> far(2, scene.lights[0]);
-  far[0].type = far[1].type = LightType::Point;
-  far[0].range = 1e10f;
-  far[1].range = 0.0f;
-  const std::vector<double> farFlux = measureLightFlux(far, samples);
-  EXPECT_GT(farFlux[1], 0.0);
-  EXPECT_NEAR(farFlux[0], farFlux[1], 1e-6 * farFlux[1]);
 }
 
 // |caches − exact| per covered pixel over the pixel's total (direct + indirect) radiance:

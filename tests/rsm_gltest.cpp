@@ -1,5 +1,5 @@
 // Parts of `--indirect` that need no context (built with the GL tests, since they link
-// render/): the map choice's rule, the map clusters and the caches' normal bins.
+// render/): the map choice's rule and measure, the map clusters and the caches' normal bins.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,6 +7,7 @@
 #include "render/light_caches.h"
 #include "render/rsm_choice.h"
 #include "render/rsm_clusters.h"
+#include "scene/shading_model.h"
 
 namespace manylight::testing {
 namespace {
@@ -25,6 +26,58 @@ TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {5, 4}).lights, (std::vector<int>{0, 1}));
   EXPECT_DOUBLE_EQ(fluxShare(chooseRsmLights(lights, flux, 2, {3, 4}).lights, flux), 15.0 / 78.0);
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 3}).lights, (std::vector<int>{3, 0}));
+}
+
+// The choice's measure against a double-precision sum of shading::irradiance at every sample,
+// where its grid over the samples meets its edges: a light of small range in a corner, a range
+// past the int's count of cells (read as every sample, as no range is), samples all at one
+// point (one cell of no size), and none.
+TEST(Indirect, TheChoiceMeasureHoldsAtItsGridsEdges) {
+  RsmSamples floor;
+  for (int i = 0; i < 256; ++i) {
+    floor.position.push_back(glm::vec3(float(i % 16), 0.0f, float(i / 16)));
+    floor.normal.push_back(glm::vec3(0.0f, 1.0f, 0.0f));
+  }
+  std::vector<Light> lights(5);
+  for (Light& l : lights) {
+    l.type = LightType::Point;
+    l.position = glm::vec3(7.5f, 2.0f, 7.5f);
+    l.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  }
+  lights[0].range = 1e10f;
+  lights[1].range = 0.0f;
+  lights[2] = {LightType::Spot,
+               glm::vec3(0.2f, 0.5f, 0.3f),
+               glm::vec3(0.0f, -1.0f, 0.0f),
+               glm::vec3(1.0f),
+               3.0f,
+               1.5f,
+               0.2f,
+               1.2f};
+  lights[3].type = LightType::Directional;
+  lights[4].range = 4.0f;
+  const auto oracle = [&](const Light& light, const RsmSamples& samples) {
+    double sum = 0.0;
+    for (std::size_t s = 0; s < samples.position.size(); ++s) {
+      glm::dvec3 l;
+      const glm::dvec3 e = shading::irradiance(light, glm::dvec3(samples.position[s]),
+                                               glm::dvec3(samples.normal[s]), l);
+      sum += 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
+    }
+    return sum;
+  };
+  RsmSamples one;
+  one.position.assign(3, glm::vec3(0.3f, 0.0f, 0.4f));
+  one.normal.assign(3, glm::vec3(0.0f, 1.0f, 0.0f));
+  for (const RsmSamples* samples : {&floor, &one}) {
+    const std::vector<double> flux = measureLightFlux(lights, *samples);
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      const double expected = oracle(lights[i], *samples);
+      if (samples == &floor) EXPECT_GT(expected, 0.0) << "light " << i;
+      EXPECT_NEAR(flux[i], expected, 1e-6 * expected) << "light " << i;
+    }
+  }
+  EXPECT_EQ(measureLightFlux(lights, RsmSamples{}), std::vector<double>(5, 0.0));
 }
 
 // A light's mean weighs each frame's flux kRsmChoiceMemory^age, until the light changes: then
