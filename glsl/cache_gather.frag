@@ -96,7 +96,8 @@ void main() {
     bool expand = texel < 0 && centre.w >= 0.0 && d + centre.w > r &&
                   !(mean.w > 0.0 && d > max(kRsmClusterDistance * centre.w, 2.0 * r + centre.w));
     bool whole = texel < 0 && centre.w >= 0.0 && !expand;
-    if (whole || (texel >= 0 && flux.w != 0.0)) addTexel(flux, centre.xyz, mean.xyz, q, r, nc, c, exact);
+    if (whole || (texel >= 0 && flux.w != 0.0))
+      addTexel(flux, centre.xyz, mean.xyz, q, r, nc, c, exact);
     if (expand) {
       texel = 0;
     } else if (texel >= 0 && texel + 1 < kSlots) {

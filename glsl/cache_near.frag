@@ -5,8 +5,8 @@
 // transition band the near light of both cascades is blended as the caches are. The texels
 // come in entries, clusters or texels alone, found in the cascade's grid: the cells listed for
 // the pixel's own cell that lie within the grid's reach of the pixel, and of those only the
-// [uFirst[k], uFirst[k] + uCount[k]) th entries in the cells' order are read, so one pass stays under llvmpipe's 65,535 loop
-// iterations. A pixel farther from a flat cluster than kRsmClusterDistance of its radii takes
+// [uFirst[k], uFirst[k] + uCount[k]) th entries in the cells' order are read, so one pass
+// stays under llvmpipe's 65,535 loop iterations. A pixel farther from a flat cluster than kRsmClusterDistance of its radii takes
 // its light as one texel's at its centre; nearer, it sums the cluster's texels.
 uniform sampler2D uPosition;
 uniform sampler2D uNormal;

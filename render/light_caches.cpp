@@ -143,7 +143,8 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
     m = {cell, bin, corrected};
     markCell(grid, k, cell, bin, corrected, a);
   };
-  glm::vec3 lastNormal(std::numeric_limits<float>::quiet_NaN());  // equal to none
+  // NaN, equal to no normal: the first pixel's bin is computed whatever its normal.
+  glm::vec3 lastNormal(std::numeric_limits<float>::quiet_NaN());
   int bin = 0;
   bool corrected = false;
   for (std::size_t i = 0; 4 * i + 3 < normal.size(); ++i) {

@@ -150,12 +150,12 @@ std::vector<long long> windowSums(const std::vector<long long>& cost, glm::ivec3
 }
 
 // Per cell of a grid of `cells` cells of edge `cell`: the cells holding entries (`ranges`)
-// whose box lies within `reach` of its own, appended to `out` in the cells' order as (x, y, z,
-// 0). Returns per cell its first place in `out` and their count: a pixel in the cell reads
-// those cells only, instead of every cell of the window around it, most of them empty.
+// whose box lies within `reach` of its own (all within `m` cells of it on each axis), appended to
+// `out` in the cells' order as (x, y, z, 0). Returns per cell its first place in `out` and their
+// count: a pixel in the cell reads those cells only, instead of every cell of the window around it,
+// most of them empty.
 std::vector<glm::vec2> neighbourLists(const std::vector<glm::vec2>& ranges, glm::ivec3 cells,
-                                      float cell, float reach, std::vector<glm::vec4>& out) {
-  const int m = int(std::ceil(reach / cell)) + 1;
+                                      float cell, float reach, int m, std::vector<glm::vec4>& out) {
   const auto index = [&](glm::ivec3 c) {
     return std::size_t((c.z * cells.y + c.y) * cells.x + c.x);
   };
@@ -383,9 +383,10 @@ void NearField::upload(const CacheGrid& grid) {
     planes.push_back(cellPlanes(entries, list, r, kPlaneTolerance * cell));
     for (const Entry& e : entries) clusterEntries_ += e.centreRadius.w > 0.0f;
     first.emplace_back(), count.emplace_back();
-    cascadePasses(entries, list, r, cells, int(std::ceil(reach / cell)) + 1, first.back(),
-                  count.back());
-    lists.push_back(neighbourLists(r, cells, cell, reach, neighbours));
+    // A pixel's cells lie within m of its own on each axis.
+    const int m = int(std::ceil(reach / cell)) + 1;
+    cascadePasses(entries, list, r, cells, m, first.back(), count.back());
+    lists.push_back(neighbourLists(r, cells, cell, reach, m, neighbours));
     for (glm::vec2& range : r) range.x += float(ordered.size());
     for (int i : list) ordered.push_back(entries[std::size_t(i)]);
     cell_.push_back(cell), reach_.push_back(reach), spread_.push_back(spread);

@@ -285,8 +285,7 @@ std::vector<double> measureLightFlux(const std::vector<Light>& lights, const Rsm
         std::vector<float> scratch(padded(arrays.size()), 0.0f);
         for (std::size_t i = from; i < to; ++i) {
           const glm::dvec3 radiant = glm::dvec3(lights[i].colour) * double(lights[i].intensity);
-          const double luminance = 0.2126 * radiant.r + 0.7152 * radiant.g + 0.0722 * radiant.b;
-          flux[i] = luminance * unitFlux(lights[i], arrays, grid, scratch);
+          flux[i] = shading::luminance(radiant) * unitFlux(lights[i], arrays, grid, scratch);
         }
       });
   return flux;

@@ -135,6 +135,10 @@ inline glm::dvec3 brdf(const PhongMaterial& m, glm::dvec3 n, glm::dvec3 l, glm::
   return f;
 }
 
+// Rec. 709 luminance of linear RGB: how the map choice (render/rsm_choice.h) weighs a light's
+// irradiance.
+inline double luminance(glm::dvec3 rgb) { return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b; }
+
 // Irradiance at p (unit normal n) from `light`, and the unit vector l towards the light.
 inline glm::dvec3 irradiance(const Light& light, glm::dvec3 p, glm::dvec3 n, glm::dvec3& l) {
   const glm::dvec3 radiant = glm::dvec3(light.colour) * double(light.intensity);

@@ -260,7 +260,7 @@ TEST(Indirect, TheChoiceWeighsTheLightsAsTheShadingModelDoes) {
       glm::dvec3 l;
       const glm::dvec3 e = shading::irradiance(scene.lights[i], glm::dvec3(samples.position[s]),
                                                glm::dvec3(samples.normal[s]), l);
-      oracle[i] += 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
+      oracle[i] += shading::luminance(e);
       lit += e != glm::dvec3(0.0);
     }
     reached += lit > 0 && std::size_t(lit) < samples.position.size() / 2 &&

@@ -62,7 +62,7 @@ TEST(Indirect, TheChoiceMeasureHoldsAtItsGridsEdges) {
       glm::dvec3 l;
       const glm::dvec3 e = shading::irradiance(light, glm::dvec3(samples.position[s]),
                                                glm::dvec3(samples.normal[s]), l);
-      sum += 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
+      sum += shading::luminance(e);
     }
     return sum;
   };
