@@ -16,6 +16,7 @@
   X(PFNGLCLEARBUFFERFIPROC, glClearBufferfi)                     \
   X(PFNGLSTENCILFUNCPROC, glStencilFunc)                         \
   X(PFNGLSTENCILOPPROC, glStencilOp)                             \
+  X(PFNGLSTENCILMASKPROC, glStencilMask)                         \
   X(PFNGLENABLEPROC, glEnable)                                   \
   X(PFNGLDISABLEPROC, glDisable)                                 \
   X(PFNGLBLENDFUNCPROC, glBlendFunc)                             \

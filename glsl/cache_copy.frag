@@ -1,8 +1,11 @@
 // `--indirect caches` (render/light_caches.h): the caches a frame keeps from the one before
-// (LightCaches::upload) take their coefficients from the previous frame's targets. Cache c
-// (texel (c mod width, c / width)) below uKept reads uPrevious at its own texel: its slot in
-// the previous targets, laid out alike.
+// (LightCaches::upload) take their coefficients from a map's targets of the frame before.
+// Cache c (texel (c mod width, c / width)) below uKept reads uPrevious at its own texel: its
+// slot in those targets, laid out alike. With CACHE_SUM, every cache below uKept reads its own
+// slot, and the pass, blended (ONE, ONE), adds a map's coefficients to the sum over maps.
+#ifndef CACHE_SUM
 uniform sampler2D uPrevious;
+#endif
 uniform int uKept;
 uniform sampler2D uSh0;
 uniform sampler2D uSh1;
@@ -11,7 +14,7 @@ uniform sampler2D uSh3;
 uniform sampler2D uSh4;
 uniform sampler2D uSh5;
 uniform sampler2D uSh6;
-uniform sampler2D uCorrection;
+uniform sampler2D uExact;
 
 out vec4 oSh0;
 out vec4 oSh1;
@@ -20,17 +23,20 @@ out vec4 oSh3;
 out vec4 oSh4;
 out vec4 oSh5;
 out vec4 oSh6;
-out vec4 oCorrection;
+out vec4 oExact;
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   if ((px.y << kCacheTextureShift) + px.x >= uKept) discard;
-  int slot = int(texelFetch(uPrevious, px, 0).r);
-  ivec2 at = cacheTexel(slot);
+#ifdef CACHE_SUM
+  ivec2 at = px;
+#else
+  ivec2 at = cacheTexel(int(texelFetch(uPrevious, px, 0).r));
+#endif
   oSh0 = texelFetch(uSh0, at, 0);
   oSh1 = texelFetch(uSh1, at, 0);
   oSh2 = texelFetch(uSh2, at, 0);
-  oCorrection = texelFetch(uCorrection, at, 0);
+  oExact = texelFetch(uExact, at, 0);
 #ifdef SH_L2
   oSh3 = texelFetch(uSh3, at, 0);
   oSh4 = texelFetch(uSh4, at, 0);

@@ -8,11 +8,10 @@
 // times farWeight(d, r), r the larger of the map's uNearRadius and kNearCells of the cache's
 // cells: the pixels gather the rest themselves (render/near_field.h). A cluster of texels far
 // enough from the cache counts as one texel (render/rsm_clusters.h). Beside the coefficients,
-// the cache's correction for its normal n_c: the exact far irradiance there, Σ that ·
-// max(n_c·ω, 0), less what the coefficients give n_c (linear in the light, so it adds up
-// over maps and passes as they do).
+// the exact far irradiance for the cache's normal n_c, Σ that · max(n_c·ω, 0) (linear in the
+// light, so it adds up over maps and passes as the coefficients do).
 uniform sampler2D uCachePosition;
-uniform sampler2D uCacheNormal;  // the normal the cache's correction is exact for
+uniform sampler2D uCacheNormal;  // n_c, the normal of the cache's exact irradiance
 uniform int uFirstCache;  // the caches before it kept their light from the frame before
 uniform int uCacheCount;
 uniform int uRsmSize;
@@ -32,7 +31,7 @@ out vec4 oSh3;
 out vec4 oSh4;
 out vec4 oSh5;
 out vec4 oSh6;
-out vec4 oCorrection;
+out vec4 oExact;
 
 // Adds to c the far light of a texel (flux.rgb, area flux.w) at y, of normal nt, arriving at
 // q for a near radius r, projected on the basis.
@@ -115,5 +114,5 @@ void main() {
   oSh4 = vec4(c[5].gb, c[6].rg);
   oSh5 = vec4(c[6].b, c[7]);
   oSh6 = vec4(c[8], 0.0);
-  oCorrection = vec4(exact - shIrradiance(c, nc), 0.0);
+  oExact = vec4(exact, 0.0);
 }

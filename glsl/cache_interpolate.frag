@@ -1,8 +1,12 @@
 // `--indirect caches` (render/light_caches.h): each pixel's irradiance interpolated from the
 // caches at the eight nodes of its cell in its cascade of the Cache Address Volume, each
-// cache's spherical harmonics (glsl/sh_basis.glsl) evaluated for the pixel's normal; in the
-// transition band (glsl/cache_cascade.glsl), blended with the next cascade's linearly across
-// the band. Added (blend ONE, ONE) to the radiance target: albedo/π · E.
+// cache's spherical harmonics (glsl/sh_basis.glsl) evaluated for the pixel's normal, corrected
+// towards the cache's exact irradiance for its bin's centre; with CENTRED_NORMALS, for the
+// pixels whose normal is that centre, the exact irradiance alone. In the transition band
+// (glsl/cache_cascade.glsl) the next cascade's is blended in linearly across the band: this
+// pass adds (1 − band) of the pixel's cascade's, with NEXT_CASCADE band of the next one's.
+// The stencil (render/pixel_classes.h) picks each pass's pixels. Added (blend ONE, ONE) to
+// the radiance target: albedo/π · E.
 uniform sampler2D uPosition;
 uniform sampler2D uNormal;
 uniform sampler2D uAlbedo;
@@ -14,7 +18,7 @@ uniform sampler2D uSh3;
 uniform sampler2D uSh4;
 uniform sampler2D uSh5;
 uniform sampler2D uSh6;
-uniform sampler2D uCorrection;   // per cache: exact less SH irradiance for its normal
+uniform sampler2D uExact;        // per cache: its far irradiance, exact, for its normal
 uniform sampler2D uCacheNext;    // per cache: the next cache of its node (or −1), its bin
 uniform int uResolution;  // R: cells per axis of a cascade
 uniform vec3 uOrigin[8];  // per cascade, its node (0, 0, 0)
@@ -45,19 +49,45 @@ vec3 binNormal(int bin) {
   return normalize(d);
 }
 
-// The irradiance for unit normal n (of bin `bin`, `towards` the cosine to its centre) from the
-// caches of the node whose first is `first`: the coefficients', plus the correction of the
-// node's cache of that bin where n is within kCorrectionCosine of the centre (all of it
-// there).
-vec3 cacheIrradiance(int first, vec3 n, int bin, float towards) {
-  // Only a normal within kCorrectionCosine of its bin's centre has that bin's cache at every
-  // node around it (LightCaches' allocation); the others read the first.
-  int cache = towards > kCorrectionCosine ? first : -1;
+// The weights (shIrradianceWeights) of a pixel's normal n and of its bin's centre, and how much
+// of the correction towards the exact irradiance at the centre it takes: all of it at the
+// centre, none from kCorrectionCosine away.
+struct Normal {
+  vec3 n;
+  int bin;
+  float towards;  // n · the bin's centre
+  float correction;
+  float wn[9], wc[9];
+};
+
+// The node's cache of bin `bin`, in the list from `first`; −1 where it has none.
+int binCache(int first, int bin) {
+  int cache = first;
   for (int j = 0; j < 6 * kNormalBinGrid * kNormalBinGrid && cache >= 0; ++j) {
     vec2 link = texelFetch(uCacheNext, cacheTexel(cache), 0).rg;
     if (int(link.y) == bin) break;
     cache = int(link.x);
   }
+  return cache;
+}
+
+#ifdef CENTRED_NORMALS
+// A normal at its bin's centre (kCentredCosine, render/light_caches.h; a flat wall along an
+// axis): the exact irradiance of the node's cache of that bin, and 1. Every node of the
+// pixel's cell has one (LightCaches' allocation) but past the budget, where a node without it
+// is left out (0).
+vec4 cacheIrradiance(int first, Normal p) {
+  int cache = binCache(first, p.bin);
+  return cache >= 0 ? vec4(texelFetch(uExact, cacheTexel(cache), 0).rgb, 1.0) : vec4(0.0);
+}
+#else
+// The irradiance for the pixel's normal from the caches of the node whose first is `first`,
+// and 1: the coefficients', and where n is within kCorrectionCosine of its bin's centre, the
+// correction of the node's cache of that bin, SH(n) + t (exact − SH(centre)).
+vec4 cacheIrradiance(int first, Normal p) {
+  // Only a normal within kCorrectionCosine of its bin's centre has that bin's cache at every
+  // node around it (LightCaches' allocation); the others read the first.
+  int cache = p.towards > kCorrectionCosine ? binCache(first, p.bin) : -1;
   bool corrected = cache >= 0;
   if (!corrected) cache = first;
   ivec2 t = cacheTexel(cache);
@@ -73,17 +103,18 @@ vec3 cacheIrradiance(int first, vec3 n, int bin, float towards) {
   coefficients[7] = g.gba;
   coefficients[8] = h.rgb;
 #endif
-  vec3 e = shIrradiance(coefficients, n);
+  vec3 e = shApply(coefficients, p.wn);
   if (corrected)
-    e += smoothstep(kCorrectionCosine, 1.0, towards) * texelFetch(uCorrection, t, 0).rgb;
-  return max(e, vec3(0.0));
+    e += p.correction * (texelFetch(uExact, t, 0).rgb - shApply(coefficients, p.wc));
+  return vec4(max(e, vec3(0.0)), 1.0);
 }
+#endif
 
 // Trilinear over the caches present at the eight nodes around p in cascade k, those behind
 // the pixel's surface (below its tangent plane) left out where any lies in front: a cache
 // behind a wall sees the light in front of the wall's other side, and without visibility
 // it would leak through.
-vec3 cascadeIrradiance(int k, vec3 p, vec3 n, int bin, float towards) {
+vec3 cascadeIrradiance(int k, vec3 p, Normal normal) {
   vec3 g = (p - uOrigin[k]) / uCell[k];
   ivec3 base = ivec3(floor(g));
   vec3 f = g - vec3(base);
@@ -95,13 +126,13 @@ vec3 cascadeIrradiance(int k, vec3 p, vec3 n, int bin, float towards) {
     float cache = texelFetch(uCav, ivec3(node.xy, node.z + k * (uResolution + 1)), 0).r;
     if (cache < 0.0) continue;
     vec3 t = mix(1.0 - f, f, vec3(o));
-    float w = t.x * t.y * t.z;
-    vec3 e = cacheIrradiance(int(cache), n, bin, towards);
-    if (dot(uOrigin[k] + vec3(node) * uCell[k] - p, n) >= 0.0) {
-      sum += w * e;
+    vec4 e = cacheIrradiance(int(cache), normal);
+    float w = t.x * t.y * t.z * e.w;
+    if (dot(uOrigin[k] + vec3(node) * uCell[k] - p, normal.n) >= 0.0) {
+      sum += w * e.rgb;
       weights += w;
     } else {
-      behind += w * e;
+      behind += w * e.rgb;
       behindWeights += w;
     }
   }
@@ -111,15 +142,30 @@ vec3 cascadeIrradiance(int k, vec3 p, vec3 n, int bin, float towards) {
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
-  vec4 normal = texelFetch(uNormal, px, 0);
-  if (normal.w == 0.0) discard;
   vec3 p = texelFetch(uPosition, px, 0).xyz;
   float band;
   int k = cacheCascade(p, band);
-  if (k == uCascades) discard;  // beyond the largest cascade: no caches
-  int bin = normalBin(normal.xyz);
-  float towards = dot(normal.xyz, binNormal(bin));
-  vec3 e = cascadeIrradiance(k, p, normal.xyz, bin, towards);
-  if (band > 0.0) e = mix(e, cascadeIrradiance(k + 1, p, normal.xyz, bin, towards), band);
+#ifdef NEXT_CASCADE
+  // A pixel of a transition band (render/pixel_classes.h): the next cascade's share.
+  ++k;
+  float share = band;
+#else
+  float share = 1.0 - band;
+#endif
+  // Beyond the largest cascade, where the CPU's classes and this differ by a rounding: no
+  // caches (a share of 0, not a discard: see glsl/cache_near.frag).
+  if (k >= uCascades) share = 0.0;
+  k = min(k, uCascades - 1);
+  Normal n;
+  n.n = texelFetch(uNormal, px, 0).xyz;
+  n.bin = normalBin(n.n);
+#ifndef CENTRED_NORMALS
+  vec3 centre = binNormal(n.bin);
+  n.towards = dot(n.n, centre);
+  n.correction = smoothstep(kCorrectionCosine, 1.0, n.towards);
+  shIrradianceWeights(n.n, n.wn);
+  shIrradianceWeights(centre, n.wc);
+#endif
+  vec3 e = share * cascadeIrradiance(k, p, n);
   oRadiance = vec4(texelFetch(uAlbedo, px, 0).rgb / kPi * e, 0.0);
 }

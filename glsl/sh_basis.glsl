@@ -25,14 +25,28 @@ void shBasis(vec3 d, out float y[9]) {
 // The clamped cosine's convolution weight of coefficient k.
 float shCosine(int k) { return k == 0 ? kPi : (k < 4 ? 2.0 * kPi / 3.0 : kPi / 4.0); }
 
+// The weights that turn coefficients into irradiance for unit normal n (shIrradiance): the
+// basis at n times the clamped cosine's convolution.
+void shIrradianceWeights(vec3 n, out float w[9]) {
+  shBasis(n, w);
+  w[0] *= shCosine(0);
+  for (int k = 1; k < 4; ++k) w[k] *= shCosine(1);
+  for (int k = 4; k < 9; ++k) w[k] *= shCosine(4);
+}
+
+// Σ w[k] c[k] over the basis's coefficients.
+vec3 shApply(vec3 c[9], float w[9]) {
+  vec3 e = w[0] * c[0] + w[1] * c[1] + w[2] * c[2] + w[3] * c[3];
+#ifdef SH_L2
+  e += w[4] * c[4] + w[5] * c[5] + w[6] * c[6] + w[7] * c[7] + w[8] * c[8];
+#endif
+  return e;
+}
+
 // The irradiance coefficients `c` give unit normal n, through the clamped cosine's
 // convolution; unclamped, so linear in c (a sum over parts of the light is the sum of theirs).
 vec3 shIrradiance(vec3 c[9], vec3 n) {
-  float y[9];
-  shBasis(n, y);
-  vec3 e = shCosine(0) * y[0] * c[0] + shCosine(1) * (y[1] * c[1] + y[2] * c[2] + y[3] * c[3]);
-#ifdef SH_L2
-  e += shCosine(4) * (y[4] * c[4] + y[5] * c[5] + y[6] * c[6] + y[7] * c[7] + y[8] * c[8]);
-#endif
-  return e;
+  float w[9];
+  shIrradianceWeights(n, w);
+  return shApply(c, w);
 }

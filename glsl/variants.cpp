@@ -91,10 +91,22 @@ std::vector<ProgramVariants> programs() {
   out.push_back({"fullscreen.vert", "rsm_flux.frag", {"oRadiance"}, {{}}});
   out.push_back({"fullscreen.vert", "indirect_exact.frag", {"oRadiance"}, {{}}});
   const std::vector<std::string> sh = {"oSh0", "oSh1", "oSh2", "oSh3",
-                                       "oSh4", "oSh5", "oSh6", "oCorrection"};
+                                       "oSh4", "oSh5", "oSh6", "oExact"};
   out.push_back({"fullscreen.vert", "cache_gather.frag", sh, {{}, {"SH_L2"}}});
-  out.push_back({"fullscreen.vert", "cache_copy.frag", sh, {{}, {"SH_L2"}}});
-  out.push_back({"fullscreen.vert", "cache_interpolate.frag", {"oRadiance"}, {{}, {"SH_L2"}}});
+  out.push_back({"fullscreen.vert",
+                 "cache_copy.frag",
+                 sh,
+                 {{}, {"SH_L2"}, {"CACHE_SUM"}, {"CACHE_SUM", "SH_L2"}}});
+  std::vector<std::vector<std::string>> interpolation;
+  for (const char* basis : {"", "SH_L2"})
+    for (const char* normals : {"", "CENTRED_NORMALS"})
+      for (const char* cascade : {"", "NEXT_CASCADE"}) {
+        std::vector<std::string> defines;
+        for (const char* d : {basis, normals, cascade})
+          if (*d) defines.push_back(d);
+        interpolation.push_back(defines);
+      }
+  out.push_back({"fullscreen.vert", "cache_interpolate.frag", {"oRadiance"}, interpolation});
   out.push_back({"fullscreen.vert", "cache_near.frag", {"oRadiance"}, {{}}});
   return out;
 }

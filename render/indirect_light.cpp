@@ -1,5 +1,6 @@
 #include "render/indirect_light.h"
 
+#include <algorithm>
 #include <chrono>
 #include <glm/gtc/type_ptr.hpp>
 #include <utility>
@@ -85,39 +86,68 @@ CacheGrid frameCacheGrid(const IndirectSettings& settings, const Bounds& bounds,
 
 IndirectLight::IndirectLight(int rsmSize) : rsmSize_(rsmSize) {}
 
-bool IndirectLight::sameMaps(const std::vector<Light>& lights, const RsmChoice& choice) const {
-  if (mapGeneration_ == 0 || choice.lights != mapLights_) return false;
-  for (std::size_t i = 0; i < maps_.size(); ++i)
-    if (!sameLight(maps_[i].light, lights[std::size_t(mapLights_[i])])) return false;
-  return true;
+void IndirectLight::renderMap(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
+                              Map& m) {
+  m.id = ++mapsRendered_;
+  if (!m.rsm) m.rsm = std::make_unique<GBuffer>(rsmSize_, rsmSize_);
+  const RsmView rsmCamera = rsmView(m.light, scene.bounds(), rsmSize_);
+  geometry.draw(scene, gpu, *m.rsm, rsmCamera.view, glm::vec3(0.0f));
+  glBindVertexArray(emptyVao_.id());
+  renderFlux(*m.rsm, m.light, rsmCamera);
+  m.flux = m.rsm->read(GBuffer::kRadiance);
+  m.position = m.rsm->read(GBuffer::kPosition);
+  m.normal = m.rsm->read(GBuffer::kNormal);
+  m.texels = reflectingTexels(m.flux);
+  m.nearRadius = nearRadius(m.flux);
+  m.groups = clusterRsm(m.position, m.normal, m.flux, rsmSize_);
+  if (!m.clusters) m.clusters = std::make_unique<RsmClusterTextures>();
+  m.clusters->upload(m.groups, m.position, m.normal, m.flux);
 }
 
-void IndirectLight::renderMaps(const Scene& scene, const GpuScene& gpu,
+bool IndirectLight::updateMaps(const Scene& scene, const GpuScene& gpu,
                                const GeometryPass& geometry, const std::vector<Light>& lights,
                                const RsmChoice& choice) {
-  const Bounds bounds = scene.bounds();
-  maps_.resize(choice.lights.size());
-  mapLights_ = choice.lights;
-  ++mapGeneration_;
-  near_.clear();
-  for (std::size_t i = 0; i < maps_.size(); ++i) {
-    Map& m = maps_[i];
-    m.light = lights[std::size_t(choice.lights[i])];
-    if (!m.rsm) m.rsm = std::make_unique<GBuffer>(rsmSize_, rsmSize_);
-    const RsmView rsmCamera = rsmView(m.light, bounds, rsmSize_);
-    geometry.draw(scene, gpu, *m.rsm, rsmCamera.view, glm::vec3(0.0f));
-    glBindVertexArray(emptyVao_.id());
-    renderFlux(*m.rsm, m.light, rsmCamera);
-    const std::vector<float> flux = m.rsm->read(GBuffer::kRadiance);
-    const std::vector<float> position = m.rsm->read(GBuffer::kPosition);
-    const std::vector<float> normal = m.rsm->read(GBuffer::kNormal);
-    m.texels = reflectingTexels(flux);
-    m.nearRadius = nearRadius(flux);
-    const RsmClusters clusters = clusterRsm(position, normal, flux, rsmSize_);
-    near_.add(position, normal, flux, clusters, m.nearRadius);
-    if (!m.clusters) m.clusters = std::make_unique<RsmClusterTextures>();
-    m.clusters->upload(clusters, position, normal, flux);
+  std::vector<Map> maps(choice.lights.size());
+  std::vector<bool> taken(maps_.size() + maps.size(), false);  // layers
+  std::vector<bool> placed(maps.size(), false);
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    const int index = choice.lights[i];
+    for (Map& old : maps_) {
+      if (old.index != index || !old.rsm || !sameLight(old.light, lights[std::size_t(index)]))
+        continue;
+      maps[i] = std::move(old);
+      taken[std::size_t(maps[i].layer)] = true;
+      placed[i] = true;
+      break;
+    }
   }
+  // The maps not kept lend their GBuffers to the new ones.
+  std::vector<Map*> spare;
+  for (Map& old : maps_)
+    if (old.rsm) spare.push_back(&old);
+  bool rendered = false;
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    if (placed[i]) continue;
+    Map& m = maps[i];
+    if (!spare.empty()) {
+      m.rsm = std::move(spare.back()->rsm);
+      m.clusters = std::move(spare.back()->clusters);
+      spare.pop_back();
+    }
+    m.index = choice.lights[i];
+    m.light = lights[std::size_t(m.index)];
+    m.layer = int(std::find(taken.begin(), taken.end(), false) - taken.begin());
+    taken[std::size_t(m.layer)] = true;
+    renderMap(scene, gpu, geometry, m);
+    rendered = true;
+  }
+  const bool changed = rendered || maps.size() != maps_.size();
+  maps_ = std::move(maps);
+  if (changed) {
+    near_.clear();
+    for (const Map& m : maps_) near_.add(m.position, m.normal, m.flux, m.groups, m.nearRadius);
+  }
+  return changed;
 }
 
 IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
@@ -133,14 +163,19 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   glBindVertexArray(emptyVao_.id());
   const RsmSamples samples = sampleRsmChoice(position, normal, lights.size());
   const std::vector<double> flux = measureLightFlux(lights, samples);
+  std::vector<int> previous;
+  for (const Map& m : maps_) previous.push_back(m.index);
   const RsmChoice choice =
-      chooseRsmLights(lights, fluxHistory_.add(lights, flux), settings.rsmLights, mapLights_);
+      chooseRsmLights(lights, fluxHistory_.add(lights, flux), settings.rsmLights, previous);
   stats.candidates = choice.candidates;
   stats.fluxShare = fluxShare(choice.lights, flux);  // of this frame's flux, not the history's
   stats.chooseMs = msSince(start);
   start = Clock::now();
-  stats.mapsKept = sameMaps(lights, choice);
-  if (!stats.mapsKept) renderMaps(scene, gpu, geometry, lights, choice);
+  const long long before = mapsRendered_;
+  const bool changed = updateMaps(scene, gpu, geometry, lights, choice);
+  stats.mapsKept = chosen_ && !changed;
+  chosen_ = true;
+  stats.mapsRendered = int(mapsRendered_ - before);
   glFinish();
   stats.rsmMs = msSince(start);
   stats.rsmLights = int(maps_.size());
@@ -150,35 +185,38 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     start = Clock::now();
     const CacheGrid grid = frameCacheGrid(settings, scene.bounds(), view.eye);
     if (!caches_) caches_ = std::make_unique<LightCaches>();
-    // Kept only from caches gathered from these very maps (an `exact` frame between may have
-    // made others).
     CacheAllocation allocation = allocateCaches(grid, position, normal);
     stats.cachesRefused = allocation.refused;
-    caches_->upload(grid, std::move(allocation), settings.shL2,
-                    stats.mapsKept && cachesGeneration_ == mapGeneration_);
-    cachesGeneration_ = mapGeneration_;
+    classes_.upload(camera, allocation.classes);
+    caches_->upload(grid, std::move(allocation), settings.shL2);
     stats.caches = caches_->count();
-    stats.cachesKept = caches_->kept();
     stats.cascades = grid.cascades;
     stats.cacheCell = grid.cell[0];
     stats.allocateMs = msSince(start);
   }
   start = Clock::now();
   glBindVertexArray(emptyVao_.id());
-  for (const Map& m : maps_)
-    stats.passes +=
-        caches ? caches_->gather(*m.rsm, *m.clusters, m.nearRadius) : gather(camera, *m.rsm);
+  std::vector<int> layers;
+  for (const Map& m : maps_) {
+    stats.passes += caches ? caches_->gather(m.layer, m.id, *m.rsm, *m.clusters, m.nearRadius)
+                           : gather(camera, *m.rsm);
+    layers.push_back(m.layer);
+  }
+  if (caches) {  // once every layer has gathered
+    stats.cachesKept = caches_->kept();
+    stats.cachesGathered = caches_->gathered();
+  }
   glFinish();
   stats.gatherMs = msSince(start);
   if (caches) {
     start = Clock::now();
     near_.upload(caches_->grid());
-    stats.nearPasses = near_.draw(camera);
+    stats.nearPasses = near_.draw(camera, classes_);
     stats.nearClusters = near_.clusters();
     glFinish();
     stats.nearMs = msSince(start);
     start = Clock::now();
-    caches_->interpolate(camera);
+    caches_->interpolate(camera, classes_, layers);
     glFinish();
     stats.interpolateMs = msSince(start);
   }

@@ -13,6 +13,7 @@
 #include "render/gpu_scene.h"
 #include "render/light_caches.h"
 #include "render/near_field.h"
+#include "render/pixel_classes.h"
 #include "render/rsm.h"
 #include "render/rsm_choice.h"
 #include "scene/scene.h"
@@ -41,6 +42,7 @@ inline constexpr float kCacheCellsPerScene = 128.0f;
 struct IndirectStats {
   int rsmLights = 0;        // maps used
   bool mapsKept = false;    // the maps were the last frame's (IndirectLight::light)
+  int mapsRendered = 0;     // maps rendered anew: the others were the last frame's
   int candidates = 0;       // spot and directional lights
   long long rsmTexels = 0;  // map texels that reflect flux, over all maps
   double fluxShare = 1.0;   // the chosen lights' share of this frame's flux (fluxShare)
@@ -50,8 +52,9 @@ struct IndirectStats {
   double gatherMs = 0.0;    // the gather passes (exact), or the caches' (caches)
   // --indirect caches:
   int caches = 0;      // allocated this frame
-  int cachesKept = 0;  // of them, those that kept the last frame's light (LightCaches::upload)
-  long long cachesRefused = 0;  // CacheAllocation::refused
+  int cachesKept = 0;  // of them, those that kept the last frame's light (LightCaches::kept)
+  long long cachesGathered = 0;  // caches gathered, summed over the maps (LightCaches::gathered)
+  long long cachesRefused = 0;   // CacheAllocation::refused
   int cascades = 0;
   float cacheCell = 0.0f;      // the smallest cascade's cell edge
   double allocateMs = 0.0;     // allocated on the CPU and uploaded
@@ -72,34 +75,42 @@ class IndirectLight {
   int rsmSize() const { return rsmSize_; }
 
   // Adds one bounce from the maps of the chosen `lights` (the renderer's, by scene index) to
-  // the radiance target of `camera`, whose G-buffer holds the frame. Where the frame chooses
-  // the same lights as the last, with the same values, and the settings match, the last
-  // frame's maps serve again and so do its caches at the nodes both frames have: the scene's
-  // geometry does not change under a renderer. Throws gl::GlError.
+  // the radiance target of `camera`, whose G-buffer holds the frame. A light the last frame
+  // chose too, with the same values, keeps its map, and the caches at the nodes both frames
+  // have keep that map's light: the scene's geometry does not change under a renderer.
+  // Throws gl::GlError.
   IndirectStats light(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
                       const GBuffer& camera, const View& view, const std::vector<Light>& lights,
                       const IndirectSettings& settings);
 
  private:
-  // A chosen light's map (its radiance target holds the flux) and what it gives the caches.
+  // A chosen light's map (its radiance target holds the flux), what it gives the caches, and
+  // what was read back of it for the near field.
   struct Map {
     Light light;
+    int index = -1;    // the light's, in the scene
+    long long id = 0;  // which rendering (LightCaches::gather)
+    int layer = 0;     // its layer of the caches
     std::unique_ptr<GBuffer> rsm;
     std::unique_ptr<RsmClusterTextures> clusters;
+    std::vector<float> position, normal, flux;
+    RsmClusters groups;
     float nearRadius = 0.0f;
     long long texels = 0;  // that reflect flux
   };
-  bool sameMaps(const std::vector<Light>& lights, const RsmChoice& choice) const;
-  void renderMaps(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
+  // Makes maps_ those of `choice`, rendering those the last frame had not; returns whether the
+  // maps changed.
+  bool updateMaps(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
                   const std::vector<Light>& lights, const RsmChoice& choice);
+  void renderMap(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry, Map& m);
   int rsmSize_;
   std::vector<Map> maps_;       // the last frame's, in the order of its choice
-  std::vector<int> mapLights_;  // their scene indices
-  int mapGeneration_ = 0;       // maps rendered so far (0: none)
-  int cachesGeneration_ = 0;    // the maps the caches were gathered from
+  long long mapsRendered_ = 0;  // maps rendered so far (their ids)
+  bool chosen_ = false;         // a frame has chosen its lights
   gl::VertexArray emptyVao_;    // the full-screen triangle needs a bound VAO in core profile
   std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches
   NearField near_;
+  PixelClasses classes_;  // of the camera's pixels, for the caches' per-pixel passes
   RsmFluxHistory fluxHistory_;
 };
 

@@ -146,7 +146,8 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
   // NaN, equal to no normal: the first pixel's bin is computed whatever its normal.
   glm::vec3 lastNormal(std::numeric_limits<float>::quiet_NaN());
   int bin = 0;
-  bool corrected = false;
+  bool corrected = false, centred = false;
+  a.classes.assign(normal.size() / 4, 0);
   for (std::size_t i = 0; 4 * i + 3 < normal.size(); ++i) {
     if (normal[4 * i + 3] == 0.0f) continue;
     const glm::vec3 p(position[4 * i], position[4 * i + 1], position[4 * i + 2]);
@@ -158,10 +159,15 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
       lastNormal = raw;
       const glm::vec3 nrm = glm::normalize(raw);
       bin = normalBin(nrm);
-      corrected = glm::dot(nrm, binNormal(bin)) > kCorrectionCosine;
+      const float towards = glm::dot(nrm, binNormal(bin));
+      corrected = towards > kCorrectionCosine;
+      centred = towards >= kCentredCosine;
     }
     mark(k, p, bin, corrected);
-    if (band > 0.0f && k + 1 < grid.cascades) mark(k + 1, p, bin, corrected);
+    const bool blended = band > 0.0f && k + 1 < grid.cascades;
+    if (blended) mark(k + 1, p, bin, corrected);
+    a.classes[i] =
+        std::uint8_t(kPixelCached | (centred ? kPixelCentred : 0) | (blended ? kPixelBand : 0));
   }
   return a;
 }
@@ -181,11 +187,10 @@ std::vector<std::string> basisDefines(bool shL2) {
   return shL2 ? std::vector<std::string>{"SH_L2"} : std::vector<std::string>{};
 }
 
-// The coefficient targets (seven; SH L1 fills three) and the correction, kCacheTargets.
-const char* const kShNames[] = {"uSh0", "uSh1", "uSh2", "uSh3",
-                                "uSh4", "uSh5", "uSh6", "uCorrection"};
+// The coefficient targets (seven; SH L1 fills three) and the exact irradiance, kCacheTargets.
+const char* const kShNames[] = {"uSh0", "uSh1", "uSh2", "uSh3", "uSh4", "uSh5", "uSh6", "uExact"};
 const std::vector<std::string> kShOutputs = {"oSh0", "oSh1", "oSh2", "oSh3",
-                                             "oSh4", "oSh5", "oSh6", "oCorrection"};
+                                             "oSh4", "oSh5", "oSh6", "oExact"};
 constexpr std::size_t kCacheTargets = 8;
 
 }  // namespace
@@ -240,8 +245,8 @@ void LightCaches::allocateTargets(Targets& t, int height) {
   t.height = height;
 }
 
-void LightCaches::upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2, bool keep) {
-  keep = keep && shL2 == shL2_ && count_ > 0;
+void LightCaches::upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2) {
+  const bool keep = shL2 == shL2_ && count_ > 0;
   grid_ = grid;
   shL2_ = shL2;
   const std::size_t count = a.positions.size();
@@ -289,15 +294,16 @@ void LightCaches::upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2, 
   allocate2d(normals_, width_, height_, normals.data());
   allocate2d(links_, width_, height_, links.data());
   allocate2d(previous_, width_, height_, previous.data());
-  if (kept_ > 0) current_ ^= 1;
-  Targets& now = targets_[current_];
-  allocateTargets(now, height_);
   glBindTexture(GL_TEXTURE_2D, 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, now.framebuffer.id());
+  ++uploads_;
+  keptEverywhere_ = true;
+  gathered_ = 0;
+}
+
+void LightCaches::clearTargets(const Targets& t) {
+  glBindFramebuffer(GL_FRAMEBUFFER, t.framebuffer.id());
   const float zero[4] = {0, 0, 0, 0};
-  for (std::size_t i = 0; i < now.sh.size(); ++i) glClearBufferfv(GL_COLOR, GLint(i), zero);
-  if (kept_ > 0) copyKept(targets_[current_ ^ 1], now);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  for (std::size_t i = 0; i < t.sh.size(); ++i) glClearBufferfv(GL_COLOR, GLint(i), zero);
 }
 
 void LightCaches::copyKept(const Targets& from, const Targets& to) {
@@ -318,12 +324,28 @@ void LightCaches::copyKept(const Targets& from, const Targets& to) {
   glActiveTexture(GL_TEXTURE0);
 }
 
-int LightCaches::gather(const GBuffer& rsm, const RsmClusterTextures& clusters, float nearRadius) {
-  if (count_ == kept_) return 0;
+int LightCaches::gather(int layer, long long map, const GBuffer& rsm,
+                        const RsmClusterTextures& clusters, float nearRadius) {
+  if (std::size_t(layer) >= layers_.size()) layers_.resize(std::size_t(layer) + 1);
+  Layer& l = layers_[std::size_t(layer)];
+  const bool keep = kept_ > 0 && l.map == map && l.upload == uploads_ - 1;
+  keptEverywhere_ = keptEverywhere_ && keep;
+  l.map = map;
+  l.upload = uploads_;
+  Targets& out = keep ? scratch_ : l.targets;
+  allocateTargets(out, height_);
+  clearTargets(out);
+  if (keep) {
+    copyKept(l.targets, scratch_);
+    std::swap(l.targets, scratch_);
+  }
+  const int first = keep ? kept_ : 0;
+  gathered_ += count_ - first;
+  if (first == count_) return 0;
   const gl::Program& p =
       gl::cachedProgram("fullscreen.vert", "cache_gather.frag", basisDefines(shL2_), kShOutputs);
   p.use();
-  glBindFramebuffer(GL_FRAMEBUFFER, targets_[current_].framebuffer.id());
+  glBindFramebuffer(GL_FRAMEBUFFER, l.targets.framebuffer.id());
   glViewport(0, 0, width_, height_);
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
@@ -331,13 +353,13 @@ int LightCaches::gather(const GBuffer& rsm, const RsmClusterTextures& clusters, 
   glBlendFunc(GL_ONE, GL_ONE);
   bindSampler(p, "uCachePosition", GL_TEXTURE_2D, positions_.id(), 0);
   bindSampler(p, "uCacheNormal", GL_TEXTURE_2D, normals_.id(), 7);
-  glUniform1i(p.uniform("uFirstCache"), kept_);
+  glUniform1i(p.uniform("uFirstCache"), first);
   glUniform1i(p.uniform("uCacheCount"), count_);
   glUniform1f(p.uniform("uNearRadius"), nearRadius);
   bindSampler(p, "uClusterCentre", GL_TEXTURE_2D, clusters.centre.id(), 4);
   bindSampler(p, "uClusterNormal", GL_TEXTURE_2D, clusters.normal.id(), 5);
   bindSampler(p, "uClusterFlux", GL_TEXTURE_2D, clusters.flux.id(), 6);
-  scissorCaches(width_, height_, kept_, count_);
+  scissorCaches(width_, height_, first, count_);
   // At most one iteration per cluster besides one per texel.
   const int passes = drawRsmRowPasses(p, rsm, 1, kRsmClusterEdge,
                                       1.0 + 1.0 / double(kRsmClusterEdge * kRsmClusterEdge));
@@ -346,20 +368,59 @@ int LightCaches::gather(const GBuffer& rsm, const RsmClusterTextures& clusters, 
   return passes;
 }
 
-void LightCaches::interpolate(const GBuffer& camera) {
-  const gl::Program& p = gl::cachedProgram("fullscreen.vert", "cache_interpolate.frag",
-                                           basisDefines(shL2_), {"oRadiance"});
+void LightCaches::sum(const std::vector<int>& layers) {
+  allocateTargets(sum_, height_);
+  clearTargets(sum_);
+  std::vector<std::string> defines = basisDefines(shL2_);
+  defines.push_back("CACHE_SUM");
+  const gl::Program& p =
+      gl::cachedProgram("fullscreen.vert", "cache_copy.frag", defines, kShOutputs);
   p.use();
-  bindIndirectInputs(p, camera);
-  bindSampler(p, "uCav", GL_TEXTURE_3D, cav_.id(), 3);
-  const std::vector<gl::Texture>& sh = targets_[current_].sh;
-  for (std::size_t i = 0; i < kCacheTargets; ++i)
-    bindSampler(p, kShNames[i], GL_TEXTURE_2D, sh[i].id(), 4 + int(i));
-  bindSampler(p, "uCacheNext", GL_TEXTURE_2D, links_.id(), 4 + int(kCacheTargets));
-  setCascadeUniforms(p, grid_);
-  glUniform1i(p.uniform("uResolution"), grid_.resolution);
-  glUniform3fv(p.uniform("uOrigin"), grid_.cascades, glm::value_ptr(grid_.origin[0]));
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glUniform1i(p.uniform("uKept"), count_);
+  for (int layer : layers) {
+    const Targets& t = layers_[std::size_t(layer)].targets;
+    for (std::size_t i = 0; i < kCacheTargets; ++i)
+      bindSampler(p, kShNames[i], GL_TEXTURE_2D, t.sh[i].id(), 1 + int(i));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+void LightCaches::interpolate(const GBuffer& camera, const PixelClasses& classes,
+                              const std::vector<int>& layers) {
+  if (layers.empty()) return;
+  if (layers.size() > 1) sum(layers);
+  const std::vector<gl::Texture>& sh =
+      layers.size() > 1 ? sum_.sh : layers_[std::size_t(layers[0])].targets.sh;
+  // Pixels whose normal is their bin's centre, and the others; each their own cascade's share,
+  // then the next one's in the bands (glsl/cache_interpolate.frag).
+  for (bool next : {false, true}) {
+    for (bool centred : {true, false}) {
+      std::vector<std::string> defines = basisDefines(shL2_);
+      if (centred) defines.push_back("CENTRED_NORMALS");
+      if (next) defines.push_back("NEXT_CASCADE");
+      const gl::Program& p =
+          gl::cachedProgram("fullscreen.vert", "cache_interpolate.frag", defines, {"oRadiance"});
+      p.use();
+      const unsigned mask = kPixelCached | kPixelCentred | (next ? kPixelBand : 0);
+      classes.bind(p, camera, mask & ~(centred ? 0u : unsigned(kPixelCentred)), mask);
+      bindSampler(p, "uCav", GL_TEXTURE_3D, cav_.id(), 3);
+      for (std::size_t i = 0; i < kCacheTargets; ++i)
+        bindSampler(p, kShNames[i], GL_TEXTURE_2D, sh[i].id(), 4 + int(i));
+      bindSampler(p, "uCacheNext", GL_TEXTURE_2D, links_.id(), 4 + int(kCacheTargets));
+      setCascadeUniforms(p, grid_);
+      glUniform1i(p.uniform("uResolution"), grid_.resolution);
+      glUniform3fv(p.uniform("uOrigin"), grid_.cascades, glm::value_ptr(grid_.origin[0]));
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+  }
+  PixelClasses::done();
   glDisable(GL_BLEND);
   glActiveTexture(GL_TEXTURE0);
 }

@@ -21,6 +21,7 @@
 #include "gl/objects.h"
 #include "render/cache_layout.h"
 #include "render/gbuffer.h"
+#include "render/pixel_classes.h"
 #include "render/rsm.h"
 #include "scene/scene.h"
 
@@ -72,11 +73,14 @@ struct CacheAllocation {
   std::vector<std::size_t> nodes;  // the nodes of a cache, as indices into cav
   // caches not made as kMaxCaches were, counted once per run of pixels that share a cell and bin
   long long refused = 0;
+  // per pixel, its PixelClass bits (render/pixel_classes.h): which per-pixel passes it takes
+  std::vector<std::uint8_t> classes;
 };
-// Caches a frame holds at most (the per-process budget: their textures take at most 168 MB).
+// Caches a frame holds at most (the per-process budget): their textures take 64 bytes a cache,
+// and 128 a cache for each map's layer and two more (LightCaches): 218 MB with four maps.
 // Past it, no pixel makes another: the pixels of a node without caches go without its light
 // (the others of their cell are blended without it), or without their bin's correction.
-inline constexpr std::size_t kMaxCaches = std::size_t(1) << 19;
+inline constexpr std::size_t kMaxCaches = std::size_t(1) << 18;
 
 // Normals in 6 · kNormalBinGrid² bins: the cube face of the normal's largest component (+x,
 // −x, +y, −y, +z, −z), then a kNormalBinGrid² grid over the face (glsl/cache_interpolate.frag
@@ -85,53 +89,87 @@ inline constexpr std::size_t kMaxCaches = std::size_t(1) << 19;
 int normalBin(glm::vec3 n);
 glm::vec3 binNormal(int bin);
 
+// A normal whose cosine to its bin's centre is at least this counts as the centre
+// (kPixelCentred; a normal along an axis stored a float's rounding short of unit length): the
+// correction's weight is then 1 within 10⁻¹⁰, and the exact irradiance for the centre stands
+// for the pixel's within 10⁻⁶.
+inline constexpr float kCentredCosine = 1.0f - 1.0f / 1048576.0f;
+
+// Which per-pixel passes of the caches a pixel takes (render/pixel_classes.h).
+enum PixelClass : std::uint8_t {
+  kPixelCached = 1,   // covered, and within the cascades
+  kPixelCentred = 2,  // its normal at its bin's centre (kCentredCosine)
+  kPixelBand = 4,     // in a transition band, blended with the next cascade
+};
+
 // The caches the covered pixels of a G-buffer read back as RGBA floats need (normal.w 0 off
-// the geometry), in the order the pixels first mark them.
+// the geometry), in the order the pixels first mark them, and the pixels' classes.
 CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& position,
                                const std::vector<float>& normal);
 
-// The caches on the GPU: the CAV, the cache positions and their coefficients. A cache's light
-// depends only on its node and the maps, so while the maps stay the same (a static scene,
-// kiosk playback) a cache at a node the frame before also had keeps its coefficients, and
-// only the frame's new caches gather.
+// The caches on the GPU: the CAV, the cache positions and their coefficients, kept per map in
+// a layer of its own and summed for the interpolation. A cache's light from a map depends
+// only on its node and the map, so while a map stays the same (a static scene, kiosk
+// playback) a cache at a node the frame before also had keeps that map's coefficients, and
+// only the frame's new caches gather it; a map rendered anew gathers every cache, and the
+// others keep theirs.
 class LightCaches {
  public:
   LightCaches() = default;
-  // Uploads `a`: textures grow to hold its caches. With `keep` (the caller's word that the
-  // maps are those the last upload's caches gathered) and the same basis, the caches at
-  // nodes and bins the last upload also had keep their coefficients; the others start at 0.
-  // Throws gl::GlError.
-  void upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2, bool keep);
+  // Uploads `a`: textures grow to hold its caches. With the same basis, the caches at nodes
+  // and bins the last upload also had come first (kept()), and each map's layer gathered at
+  // the last upload can keep their coefficients (gather). Throws gl::GlError.
+  void upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2);
   int count() const { return count_; }
-  int kept() const { return kept_; }  // caches that kept their coefficients at the last upload
+  // Caches that kept their coefficients in every layer gathered since the upload: those at
+  // nodes and bins the last upload also had, or 0 where a layer gathered every cache.
+  int kept() const { return keptEverywhere_ ? kept_ : 0; }
+  // Caches gathered since the upload, summed over the layers.
+  long long gathered() const { return gathered_; }
   const CacheGrid& grid() const { return grid_; }
-  // Adds one map's far light to the caches the last upload did not keep
-  // (glsl/cache_gather.frag), for texels of near radius `nearRadius` (render/near_field.h),
-  // through the map's `clusters`; returns the passes.
-  int gather(const GBuffer& rsm, const RsmClusterTextures& clusters, float nearRadius);
-  // Adds every pixel's interpolated indirect light to `camera`'s radiance target.
-  void interpolate(const GBuffer& camera);
+  // Adds the far light of map `map` (an id that names one rendering of one map) to layer
+  // `layer`'s caches (glsl/cache_gather.frag), for texels of near radius `nearRadius`
+  // (render/near_field.h), through the map's `clusters`. Where the layer was gathered from
+  // the same map at the last upload, the kept caches keep their coefficients and only the
+  // others gather; otherwise every cache gathers. Returns the passes.
+  int gather(int layer, long long map, const GBuffer& rsm, const RsmClusterTextures& clusters,
+             float nearRadius);
+  // Adds the light interpolated from the caches of `layers` (each gathered since the last
+  // upload) to `camera`'s radiance target, at the pixels `classes` sends to it.
+  void interpolate(const GBuffer& camera, const PixelClasses& classes,
+                   const std::vector<int>& layers);
 
  private:
   // A cache's node in world units of its cascade's cell (cell edge, and the node's position
   // over it), the same in every frame whose cascades have the same cells, and its normal bin.
   using NodeKey = std::array<std::int64_t, 5>;
   struct Targets {
-    std::vector<gl::Texture> sh;  // 7 coefficient targets (SH L1 fills 3), the correction
+    std::vector<gl::Texture> sh;  // 7 coefficient targets (SH L1 fills 3), the exact
     gl::Framebuffer framebuffer;
     int height = 0;
   };
+  struct Layer {
+    Targets targets;
+    long long map = -1;  // the map gathered, and at which upload
+    int upload = -1;
+  };
   void allocateTargets(Targets& t, int height);
+  void clearTargets(const Targets& t);
   void copyKept(const Targets& from, const Targets& to);
+  void sum(const std::vector<int>& layers);
   CacheGrid grid_;
   bool shL2_ = false;
   int count_ = 0, kept_ = 0, width_ = 0, height_ = 0;
+  int uploads_ = 0;
+  bool keptEverywhere_ = true;
+  long long gathered_ = 0;
   std::vector<NodeKey> keys_;  // per cache, its node
   // previous_: per kept cache, its slot the frame before
   // links_: CacheAllocation::next, and the bin (normals_.w) beside it
   gl::Texture cav_, positions_, normals_, links_, previous_;
-  Targets targets_[2];
-  int current_ = 0;  // targets_[current_] holds this frame's coefficients
+  std::vector<Layer> layers_;
+  Targets scratch_;  // a layer's kept caches are copied here, then the two trade places
+  Targets sum_;      // Σ over the interpolated layers, where there is more than one
 };
 
 }  // namespace manylight

@@ -409,11 +409,11 @@ void NearField::upload(const CacheGrid& grid) {
   uploadGrids(size, ranges, lists, planes);
 }
 
-int NearField::draw(const GBuffer& camera) {
+int NearField::draw(const GBuffer& camera, const PixelClasses& classes) {
   if (texels_.empty() || passFirst_.empty()) return 0;
   const gl::Program& p = gl::cachedProgram("fullscreen.vert", "cache_near.frag", {}, {"oRadiance"});
   p.use();
-  bindIndirectInputs(p, camera);
+  classes.bind(p, camera, kPixelCached, kPixelCached);
   bindSampler(p, "uEntryCentre", GL_TEXTURE_2D, centres_.id(), 3);
   bindSampler(p, "uEntryNormal", GL_TEXTURE_2D, normals_.id(), 4);
   bindSampler(p, "uEntryFlux", GL_TEXTURE_2D, fluxes_.id(), 5);
@@ -433,6 +433,7 @@ int NearField::draw(const GBuffer& camera) {
     glUniform1iv(p.uniform("uCount"), k, passCount_[pass].data());
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
+  PixelClasses::done();
   glDisable(GL_BLEND);
   glActiveTexture(GL_TEXTURE0);
   return int(passFirst_.size());

@@ -29,6 +29,7 @@
 #include "render/cache_layout.h"
 #include "render/gbuffer.h"
 #include "render/light_caches.h"
+#include "render/pixel_classes.h"
 #include "render/rsm_clusters.h"
 
 namespace manylight {
@@ -65,8 +66,9 @@ class NearField {
   // Bins the entries in a grid per cascade of `grid` and uploads them, unless they were binned
   // for cascades of the same cells since the last clear. Throws gl::GlError.
   void upload(const CacheGrid& grid);
-  // Adds every covered pixel's near light to `camera`'s radiance target; returns the passes.
-  int draw(const GBuffer& camera);
+  // Adds the near light of the pixels `classes` sends to it (covered, within the cascades) to
+  // `camera`'s radiance target; returns the passes.
+  int draw(const GBuffer& camera, const PixelClasses& classes);
 
  private:
   struct Texel {

@@ -344,17 +344,6 @@ TEST(Indirect, CachesMatchExact) {
   EXPECT_LT(fine.p99, 0.02);
 }
 
-// The largest channel difference between two frames over the larger of their peaks.
-double largestDifference(const Image& a, const Image& b) {
-  double diff = 0.0, peak = 0.0;
-  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-    if (i % 4 == 3) continue;
-    diff = std::max(diff, std::abs(double(a.rgba[i]) - double(b.rgba[i])));
-    peak = std::max({peak, double(a.rgba[i]), double(b.rgba[i])});
-  }
-  return diff / std::max(peak, 1e-30);
-}
-
 // A static scene: a frame from a camera moved a little keeps the frame before's maps and its
 // caches at the nodes both frames have, and comes out as a frame made afresh there; once the
 // light moves, neither is kept, and the frame again matches one made afresh.

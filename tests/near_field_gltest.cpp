@@ -80,10 +80,11 @@ void write(const gl::Texture& t, int side, const std::vector<float>& rgba) {
   glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-// The near light `near` gives side × side pixels at `position` of `normal` (RGBA floats),
-// albedo 1, read back; `passes` the passes it took.
-std::vector<float> drawNear(NearField& near, int side, const std::vector<float>& position,
-                            const std::vector<float>& normal, int& passes) {
+// The near light `near`, uploaded for `grid`, gives side × side pixels at `position` of
+// `normal` (RGBA floats), albedo 1, read back; `passes` the passes it took.
+std::vector<float> drawNear(NearField& near, const CacheGrid& grid, int side,
+                            const std::vector<float>& position, const std::vector<float>& normal,
+                            int& passes) {
   GBuffer camera(side, side);
   write(camera.target(GBuffer::kPosition), side, position);
   write(camera.target(GBuffer::kNormal), side, normal);
@@ -93,7 +94,9 @@ std::vector<float> drawNear(NearField& near, int side, const std::vector<float>&
   glClear(GL_COLOR_BUFFER_BIT);
   const gl::VertexArray vao;
   glBindVertexArray(vao.id());
-  passes = near.draw(camera);
+  PixelClasses classes;
+  classes.upload(camera, allocateCaches(grid, position, normal).classes);
+  passes = near.draw(camera, classes);
   glBindVertexArray(0);
   return camera.read(GBuffer::kRadiance);
 }
@@ -153,7 +156,7 @@ TEST(NearField, ClustersMatchEveryTexelSummed) {
     position[i + 3] = normal[i + 3] = 1.0f;
   }
   int passes = 0;
-  const std::vector<float> radiance = drawNear(near, kSide, position, normal, passes);
+  const std::vector<float> radiance = drawNear(near, grid, kSide, position, normal, passes);
   EXPECT_EQ(passes, 1);
 
   const double r = std::max(double(radius), double(kNearCells * kCell));
@@ -200,9 +203,10 @@ TEST(NearField, EveryPassReadsItsShareOfAPixelsCells) {
   NearField near;
   add(near, far, 256);
   add(near, bumpy, 256);
-  near.upload(cacheGrid(centre, cell, 1));
+  const CacheGrid grid = cacheGrid(centre, cell, 1);
+  near.upload(grid);
   int passes = 0;
-  const std::vector<float> radiance = drawNear(near, 8, position, normal, passes);
+  const std::vector<float> radiance = drawNear(near, grid, 8, position, normal, passes);
   const double r = std::max(double(nearRadius(bumpy.flux)), double(kNearCells * cell));
   double worst = 0.0;
   for (std::size_t i = 0; i < position.size(); i += 4) {
@@ -224,7 +228,8 @@ TEST(NearField, TexelsAtTheMapsEdgeLightThePixelsBeyondIt) {
   const float cell = 0.1f;
   NearField near;
   add(near, sparse, 16);
-  near.upload(cacheGrid(glm::vec3(1.6f, 0.0f, 1.6f), cell, 1));
+  const CacheGrid grid = cacheGrid(glm::vec3(1.6f, 0.0f, 1.6f), cell, 1);
+  near.upload(grid);
   EXPECT_EQ(near.clusters(), 0);
   std::vector<float> position(4 * 8 * 8), normal(position.size());
   const glm::vec3 facing = glm::normalize(glm::vec3(1.0f, -0.2f, 0.0f));
@@ -235,7 +240,7 @@ TEST(NearField, TexelsAtTheMapsEdgeLightThePixelsBeyondIt) {
     position[i + 3] = normal[i + 3] = 1.0f;
   }
   int passes = 0;
-  const std::vector<float> radiance = drawNear(near, 8, position, normal, passes);
+  const std::vector<float> radiance = drawNear(near, grid, 8, position, normal, passes);
   const double r = std::max(double(nearRadius(sparse.flux)), double(kNearCells * cell));
   double got = 0.0, want = 0.0;
   for (std::size_t i = 0; i < position.size(); i += 4) {

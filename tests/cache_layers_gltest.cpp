@@ -1,0 +1,88 @@
+// `--indirect caches` with several maps (render/light_caches.h): each map's light is kept in a
+// layer of its own, so a frame in which one chosen light changes renders and gathers that
+// map alone, the others keep theirs, and the frame matches one made afresh.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <iostream>
+
+#include "generators/scene_builder.h"
+#include "render/render_job.h"
+#include "scene/gltf_loader.h"
+#include "tests/gl_support.h"
+
+namespace manylight::testing {
+namespace {
+
+constexpr int kWidth = 96, kHeight = 72;
+
+// The Cornell-like room with five more lights: point, spot, directional, point, spot, so four
+// lights may have maps.
+Scene fourMapRoom() {
+  context();
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("manylight_layers_" + std::to_string(::getpid()) + ".glb"))
+                               .string();
+  CornellOptions options;
+  options.extraLights = 5;
+  writeCornellScene(path, options);
+  Scene s = loadGltf(path);
+  std::filesystem::remove(path);
+  return s;
+}
+
+TEST(Indirect, OneChangedLightGathersItsMapAlone) {
+  const Scene room = fourMapRoom();
+  RenderRequest request;
+  request.width = kWidth;
+  request.height = kHeight;
+  request.indirect.mode = Indirect::Caches;
+  request.indirect.rsmLights = 8;  // every candidate, in any renderer: the same maps
+  PreparedRender p(room, request);
+  View view = makeView(p.camera, kWidth, kHeight);
+  FrameStats first;
+  const Image before = p.renderer->render(view, p.settings, &first);
+  ASSERT_EQ(first.indirect.rsmLights, 4);
+  EXPECT_EQ(first.indirect.mapsRendered, 4);
+  EXPECT_EQ(first.indirect.cachesGathered, 4LL * first.indirect.caches);
+
+  // The camera moves: every map stays, and each gathers only the new caches.
+  view.eye += glm::vec3(0.05f, 0.02f, 0.0f);
+  view.view = glm::lookAt(view.eye, view.eye + view.forward, glm::vec3(0, 1, 0));
+  FrameStats moved;
+  p.renderer->render(view, p.settings, &moved);
+  EXPECT_TRUE(moved.indirect.mapsKept);
+  EXPECT_EQ(moved.indirect.mapsRendered, 0);
+  EXPECT_GT(moved.indirect.cachesKept, moved.indirect.caches / 2);
+  EXPECT_EQ(moved.indirect.cachesGathered,
+            4LL * (moved.indirect.caches - moved.indirect.cachesKept));
+
+  // One chosen light other than the room's spot brightens: its map alone is rendered anew and
+  // gathers every cache; the camera stays, so the other three gather none.
+  int changedLight = -1;
+  for (std::size_t i = 1; i < room.lights.size(); ++i)
+    if (room.lights[i].type != LightType::Point) changedLight = int(i);
+  ASSERT_GT(changedLight, 0);
+  Scene changed = room;
+  changed.lights[std::size_t(changedLight)].intensity *= 1.5f;
+  p.renderer->moveLights(changed.lights, {changedLight}, BakeOptions{});
+  FrameStats relit;
+  const Image lit = p.renderer->render(view, p.settings, &relit);
+  EXPECT_FALSE(relit.indirect.mapsKept);
+  EXPECT_EQ(relit.indirect.mapsRendered, 1);
+  EXPECT_EQ(relit.indirect.cachesKept, 0);
+  EXPECT_EQ(relit.indirect.cachesGathered, relit.indirect.caches);
+  PreparedRender fresh(changed, request);
+  FrameStats afreshStats;
+  const Image afresh = fresh.renderer->render(view, fresh.settings, &afreshStats);
+  EXPECT_EQ(afreshStats.indirect.cachesGathered, 4LL * afreshStats.indirect.caches);
+  std::cout << relit.indirect.caches << " caches; largest difference from a fresh frame "
+            << largestDifference(lit, afresh) << "\n";
+  EXPECT_LE(largestDifference(lit, afresh), 1e-5);
+  EXPECT_GT(largestDifference(lit, before), 1e-3);
+}
+
+}  // namespace
+}  // namespace manylight::testing
