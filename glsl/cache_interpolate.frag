@@ -74,8 +74,8 @@ int binCache(int first, int bin) {
 #ifdef CENTRED_NORMALS
 // A normal at its bin's centre (kCentredCosine, render/light_caches.h; a flat wall along an
 // axis): the exact irradiance of the node's cache of that bin, and 1. Every node of the
-// pixel's cell has one (LightCaches' allocation) but past the budget, where a node without it
-// is left out (0).
+// pixel's cell has one: allocateCaches marks a pixel centred only then (a node without it,
+// should one be read, is left out: 0).
 vec4 cacheIrradiance(int first, Normal p) {
   int cache = binCache(first, p.bin);
   return cache >= 0 ? vec4(texelFetch(uExact, cacheTexel(cache), 0).rgb, 1.0) : vec4(0.0);

@@ -108,7 +108,7 @@ bool IndirectLight::updateMaps(const Scene& scene, const GpuScene& gpu,
                                const GeometryPass& geometry, const std::vector<Light>& lights,
                                const RsmChoice& choice) {
   std::vector<Map> maps(choice.lights.size());
-  std::vector<bool> taken(maps_.size() + maps.size(), false);  // layers
+  std::vector<int> layerMaps(std::size_t(kMaxCacheLayers), 0);  // maps a layer holds
   std::vector<bool> placed(maps.size(), false);
   for (std::size_t i = 0; i < maps.size(); ++i) {
     const int index = choice.lights[i];
@@ -116,7 +116,7 @@ bool IndirectLight::updateMaps(const Scene& scene, const GpuScene& gpu,
       if (old.index != index || !old.rsm || !sameLight(old.light, lights[std::size_t(index)]))
         continue;
       maps[i] = std::move(old);
-      taken[std::size_t(maps[i].layer)] = true;
+      ++layerMaps[std::size_t(maps[i].layer)];
       placed[i] = true;
       break;
     }
@@ -136,8 +136,9 @@ bool IndirectLight::updateMaps(const Scene& scene, const GpuScene& gpu,
     }
     m.index = choice.lights[i];
     m.light = lights[std::size_t(m.index)];
-    m.layer = int(std::find(taken.begin(), taken.end(), false) - taken.begin());
-    taken[std::size_t(m.layer)] = true;
+    // The layer holding the fewest maps (a free one while there is one), the first of those.
+    m.layer = int(std::min_element(layerMaps.begin(), layerMaps.end()) - layerMaps.begin());
+    ++layerMaps[std::size_t(m.layer)];
     renderMap(scene, gpu, geometry, m);
     rendered = true;
   }
@@ -197,10 +198,20 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   start = Clock::now();
   glBindVertexArray(emptyVao_.id());
   std::vector<int> layers;
-  for (const Map& m : maps_) {
-    stats.passes += caches ? caches_->gather(m.layer, m.id, *m.rsm, *m.clusters, m.nearRadius)
-                           : gather(camera, *m.rsm);
-    layers.push_back(m.layer);
+  if (caches) {
+    for (int layer = 0; layer < kMaxCacheLayers; ++layer) {
+      std::vector<long long> ids;
+      for (const Map& m : maps_)
+        if (m.layer == layer) ids.push_back(m.id);
+      if (ids.empty()) continue;
+      caches_->startLayer(layer, std::move(ids));
+      for (const Map& m : maps_)
+        if (m.layer == layer)
+          stats.passes += caches_->gather(layer, *m.rsm, *m.clusters, m.nearRadius);
+      layers.push_back(layer);
+    }
+  } else {
+    for (const Map& m : maps_) stats.passes += gather(camera, *m.rsm);
   }
   if (caches) {  // once every layer has gathered
     stats.cachesKept = caches_->kept();

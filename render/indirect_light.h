@@ -89,8 +89,8 @@ class IndirectLight {
   struct Map {
     Light light;
     int index = -1;    // the light's, in the scene
-    long long id = 0;  // which rendering (LightCaches::gather)
-    int layer = 0;     // its layer of the caches
+    long long id = 0;  // which rendering (LightCaches::startLayer)
+    int layer = 0;     // its layer of the caches, below kMaxCacheLayers
     std::unique_ptr<GBuffer> rsm;
     std::unique_ptr<RsmClusterTextures> clusters;
     std::vector<float> position, normal, flux;

@@ -67,9 +67,11 @@ namespace {
 // Marks the eight nodes around p in cascade k for a pixel of normal bin `bin` (normalBin),
 // `corrected` where its normal lies within kCorrectionCosine of the bin's centre: a node gets
 // a cache per bin of such pixels, listed from its CAV entry on, and one at least. (Every cache
-// of a node has the same coefficients; the others' pixels read its first.)
-void markCell(const CacheGrid& g, int k, glm::ivec3 base, int bin, bool corrected,
+// of a node has the same coefficients; the others' pixels read its first.) Returns whether
+// every node holds what the pixel reads (not where kMaxCaches refused one).
+bool markCell(const CacheGrid& g, int k, glm::ivec3 base, int bin, bool corrected,
               CacheAllocation& a) {
+  bool complete = true;
   const int n = g.nodesPerAxis();
   for (int corner = 0; corner < 8; ++corner) {
     const glm::ivec3 node =
@@ -83,6 +85,7 @@ void markCell(const CacheGrid& g, int k, glm::ivec3 base, int bin, bool correcte
     if (listed || (head >= 0.0f && !corrected)) continue;
     if (a.positions.size() >= kMaxCaches) {
       ++a.refused;
+      complete = false;
       continue;
     }
     if (head < 0.0f) a.nodes.push_back(at);
@@ -93,6 +96,7 @@ void markCell(const CacheGrid& g, int k, glm::ivec3 base, int bin, bool correcte
                   g.cell[std::size_t(k)]));
     a.normals.push_back(glm::vec4(binNormal(bin), float(bin)));
   }
+  return complete;
 }
 
 }  // namespace
@@ -133,15 +137,16 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
     glm::ivec3 cell{-1};
     int bin = -1;
     bool corrected = false;
+    bool complete = true;  // markCell's answer
   };
   std::vector<Marked> last(std::size_t(grid.cascades));
   const auto mark = [&](int k, glm::vec3 p, int bin, bool corrected) {
     const glm::ivec3 cell(
         glm::floor((p - grid.origin[std::size_t(k)]) / grid.cell[std::size_t(k)]));
     Marked& m = last[std::size_t(k)];
-    if (cell == m.cell && bin == m.bin && corrected == m.corrected) return;
-    m = {cell, bin, corrected};
-    markCell(grid, k, cell, bin, corrected, a);
+    if (cell == m.cell && bin == m.bin && corrected == m.corrected) return m.complete;
+    m = {cell, bin, corrected, markCell(grid, k, cell, bin, corrected, a)};
+    return m.complete;
   };
   // NaN, equal to no normal: the first pixel's bin is computed whatever its normal.
   glm::vec3 lastNormal(std::numeric_limits<float>::quiet_NaN());
@@ -163,11 +168,14 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
       corrected = towards > kCorrectionCosine;
       centred = towards >= kCentredCosine;
     }
-    mark(k, p, bin, corrected);
+    bool complete = mark(k, p, bin, corrected);
     const bool blended = band > 0.0f && k + 1 < grid.cascades;
-    if (blended) mark(k + 1, p, bin, corrected);
+    if (blended) complete = mark(k + 1, p, bin, corrected) && complete;
+    // A centred pixel reads its bin's cache alone (glsl/cache_interpolate.frag): only where
+    // every node around it holds one.
+    const bool exact = centred && complete;
     a.classes[i] =
-        std::uint8_t(kPixelCached | (centred ? kPixelCentred : 0) | (blended ? kPixelBand : 0));
+        std::uint8_t(kPixelCached | (exact ? kPixelCentred : 0) | (blended ? kPixelBand : 0));
   }
   return a;
 }
@@ -324,21 +332,27 @@ void LightCaches::copyKept(const Targets& from, const Targets& to) {
   glActiveTexture(GL_TEXTURE0);
 }
 
-int LightCaches::gather(int layer, long long map, const GBuffer& rsm,
-                        const RsmClusterTextures& clusters, float nearRadius) {
+void LightCaches::startLayer(int layer, std::vector<long long> maps) {
   if (std::size_t(layer) >= layers_.size()) layers_.resize(std::size_t(layer) + 1);
   Layer& l = layers_[std::size_t(layer)];
-  const bool keep = kept_ > 0 && l.map == map && l.upload == uploads_ - 1;
-  keptEverywhere_ = keptEverywhere_ && keep;
-  l.map = map;
+  std::sort(maps.begin(), maps.end());
+  l.keep = kept_ > 0 && l.maps == maps && l.upload == uploads_ - 1;
+  keptEverywhere_ = keptEverywhere_ && l.keep;
+  l.maps = std::move(maps);
   l.upload = uploads_;
-  Targets& out = keep ? scratch_ : l.targets;
+  Targets& out = l.keep ? scratch_ : l.targets;
   allocateTargets(out, height_);
   clearTargets(out);
-  if (keep) {
+  if (l.keep) {
     copyKept(l.targets, scratch_);
     std::swap(l.targets, scratch_);
   }
+}
+
+int LightCaches::gather(int layer, const GBuffer& rsm, const RsmClusterTextures& clusters,
+                        float nearRadius) {
+  const Layer& l = layers_.at(std::size_t(layer));
+  const bool keep = l.keep;
   const int first = keep ? kept_ : 0;
   gathered_ += count_ - first;
   if (first == count_) return 0;
@@ -400,13 +414,18 @@ void LightCaches::interpolate(const GBuffer& camera, const PixelClasses& classes
       layers.size() > 1 ? sum_.sh : layers_[std::size_t(layers[0])].targets.sh;
   // Pixels whose normal is their bin's centre, and the others; each their own cascade's share,
   // then the next one's in the bands (glsl/cache_interpolate.frag).
+  // Compiled before the stencil is bound, so that a failure leaves no stencil test on.
+  const auto program = [&](bool next, bool centred) -> const gl::Program& {
+    std::vector<std::string> defines = basisDefines(shL2_);
+    if (centred) defines.push_back("CENTRED_NORMALS");
+    if (next) defines.push_back("NEXT_CASCADE");
+    return gl::cachedProgram("fullscreen.vert", "cache_interpolate.frag", defines, {"oRadiance"});
+  };
+  for (bool next : {false, true})
+    for (bool centred : {true, false}) program(next, centred);
   for (bool next : {false, true}) {
     for (bool centred : {true, false}) {
-      std::vector<std::string> defines = basisDefines(shL2_);
-      if (centred) defines.push_back("CENTRED_NORMALS");
-      if (next) defines.push_back("NEXT_CASCADE");
-      const gl::Program& p =
-          gl::cachedProgram("fullscreen.vert", "cache_interpolate.frag", defines, {"oRadiance"});
+      const gl::Program& p = program(next, centred);
       p.use();
       const unsigned mask = kPixelCached | kPixelCentred | (next ? kPixelBand : 0);
       classes.bind(p, camera, mask & ~(centred ? 0u : unsigned(kPixelCentred)), mask);

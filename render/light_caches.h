@@ -76,8 +76,12 @@ struct CacheAllocation {
   // per pixel, its PixelClass bits (render/pixel_classes.h): which per-pixel passes it takes
   std::vector<std::uint8_t> classes;
 };
+// Layers of coefficients the caches keep at most (LightCaches): a map has one of its own
+// while there are at most this many maps; past that, maps share layers, and a layer gathers
+// anew whenever one of its maps is rendered anew.
+inline constexpr int kMaxCacheLayers = 4;
 // Caches a frame holds at most (the per-process budget): their textures take 64 bytes a cache,
-// and 128 a cache for each map's layer and two more (LightCaches): 218 MB with four maps.
+// and 128 a cache for each layer and two more (LightCaches): 218 MB at most.
 // Past it, no pixel makes another: the pixels of a node without caches go without its light
 // (the others of their cell are blended without it), or without their bin's correction.
 inline constexpr std::size_t kMaxCaches = std::size_t(1) << 18;
@@ -90,10 +94,10 @@ int normalBin(glm::vec3 n);
 glm::vec3 binNormal(int bin);
 
 // A normal whose cosine to its bin's centre is at least this counts as the centre
-// (kPixelCentred; a normal along an axis stored a float's rounding short of unit length): the
-// correction's weight is then 1 within 10⁻¹⁰, and the exact irradiance for the centre stands
-// for the pixel's within 10⁻⁶.
-inline constexpr float kCentredCosine = 1.0f - 1.0f / 1048576.0f;
+// (kPixelCentred): within 0.49 mrad of it, so a normal along an axis, a float's rounding
+// short of unit length, counts. The correction's weight there is 1 within 2 × 10⁻¹⁰, and the
+// exact irradiance for the centre stands for the pixel's within about 5 × 10⁻⁴ of it.
+inline constexpr float kCentredCosine = 1.0f - 1.0f / 8388608.0f;  // 1 − 2⁻²³
 
 // Which per-pixel passes of the caches a pixel takes (render/pixel_classes.h).
 enum PixelClass : std::uint8_t {
@@ -127,13 +131,15 @@ class LightCaches {
   // Caches gathered since the upload, summed over the layers.
   long long gathered() const { return gathered_; }
   const CacheGrid& grid() const { return grid_; }
-  // Adds the far light of map `map` (an id that names one rendering of one map) to layer
-  // `layer`'s caches (glsl/cache_gather.frag), for texels of near radius `nearRadius`
-  // (render/near_field.h), through the map's `clusters`. Where the layer was gathered from
-  // the same map at the last upload, the kept caches keep their coefficients and only the
-  // others gather; otherwise every cache gathers. Returns the passes.
-  int gather(int layer, long long map, const GBuffer& rsm, const RsmClusterTextures& clusters,
-             float nearRadius);
+  // Starts layer `layer` (below kMaxCacheLayers) of this upload for the maps of ids `maps`
+  // (an id names one rendering of one map): where the layer held the same maps at the last
+  // upload, the kept caches keep their coefficients; otherwise every cache starts at 0.
+  void startLayer(int layer, std::vector<long long> maps);
+  // Adds one of the started layer's maps' far light to the layer (glsl/cache_gather.frag),
+  // for texels of near radius `nearRadius` (render/near_field.h), through the map's
+  // `clusters`: every cache's, or where the layer was kept, the caches not kept. Returns the
+  // passes.
+  int gather(int layer, const GBuffer& rsm, const RsmClusterTextures& clusters, float nearRadius);
   // Adds the light interpolated from the caches of `layers` (each gathered since the last
   // upload) to `camera`'s radiance target, at the pixels `classes` sends to it.
   void interpolate(const GBuffer& camera, const PixelClasses& classes,
@@ -150,8 +156,9 @@ class LightCaches {
   };
   struct Layer {
     Targets targets;
-    long long map = -1;  // the map gathered, and at which upload
+    std::vector<long long> maps;  // the maps gathered (sorted), and at which upload
     int upload = -1;
+    bool keep = false;  // at this upload, the kept caches kept their coefficients
   };
   void allocateTargets(Targets& t, int height);
   void clearTargets(const Targets& t);

@@ -1,6 +1,7 @@
 // `--indirect caches` with several maps (render/light_caches.h): each map's light is kept in a
-// layer of its own, so a frame in which one chosen light changes renders and gathers that
-// map alone, the others keep theirs, and the frame matches one made afresh.
+// layer of its own (past kMaxCacheLayers maps, shared), so a frame in which one chosen light
+// changes renders and gathers that map (and its layer's others) alone, the others keep
+// theirs, and the frame matches one made afresh.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -18,15 +19,15 @@ namespace {
 
 constexpr int kWidth = 96, kHeight = 72;
 
-// The Cornell-like room with five more lights: point, spot, directional, point, spot, so four
-// lights may have maps.
-Scene fourMapRoom() {
+// The Cornell-like room with `extra` more lights: point, spot, directional, point, … The room's
+// spot and the extra spots and directional lights may have maps.
+Scene roomWithLights(int extra) {
   context();
   const std::string path = (std::filesystem::temp_directory_path() /
                             ("manylight_layers_" + std::to_string(::getpid()) + ".glb"))
                                .string();
   CornellOptions options;
-  options.extraLights = 5;
+  options.extraLights = extra;
   writeCornellScene(path, options);
   Scene s = loadGltf(path);
   std::filesystem::remove(path);
@@ -34,7 +35,7 @@ Scene fourMapRoom() {
 }
 
 TEST(Indirect, OneChangedLightGathersItsMapAlone) {
-  const Scene room = fourMapRoom();
+  const Scene room = roomWithLights(5);  // four maps
   RenderRequest request;
   request.width = kWidth;
   request.height = kHeight;
@@ -82,6 +83,55 @@ TEST(Indirect, OneChangedLightGathersItsMapAlone) {
             << largestDifference(lit, afresh) << "\n";
   EXPECT_LE(largestDifference(lit, afresh), 1e-5);
   EXPECT_GT(largestDifference(lit, before), 1e-3);
+}
+
+// Seven maps in four layers: a changed light's layer gathers anew, for each of its maps, and
+// the frame matches a fresh one; a frame with fewer maps, then one with all seven again, too.
+TEST(Indirect, MapsPastTheLayersShareThem) {
+  const Scene room = roomWithLights(9);
+  RenderRequest request;
+  request.width = kWidth;
+  request.height = kHeight;
+  request.indirect.mode = Indirect::Caches;
+  request.indirect.rsmLights = 8;  // every candidate
+  PreparedRender p(room, request);
+  const View view = makeView(p.camera, kWidth, kHeight);
+  FrameStats first;
+  p.renderer->render(view, p.settings, &first);
+  ASSERT_EQ(first.indirect.rsmLights, 7);
+  EXPECT_EQ(first.indirect.cachesGathered, 7LL * first.indirect.caches);
+
+  int changedLight = -1;
+  for (std::size_t i = 1; i < room.lights.size(); ++i)
+    if (room.lights[i].type == LightType::Spot) changedLight = int(i);
+  ASSERT_GT(changedLight, 0);
+  Scene changed = room;
+  changed.lights[std::size_t(changedLight)].intensity *= 1.5f;
+  p.renderer->moveLights(changed.lights, {changedLight}, BakeOptions{});
+  FrameStats relit;
+  const Image lit = p.renderer->render(view, p.settings, &relit);
+  EXPECT_EQ(relit.indirect.mapsRendered, 1);
+  // Its layer holds one or two maps (seven over four layers), the others gather nothing.
+  EXPECT_GE(relit.indirect.cachesGathered, relit.indirect.caches);
+  EXPECT_LE(relit.indirect.cachesGathered, 2LL * relit.indirect.caches);
+  PreparedRender fresh(changed, request);
+  const Image afresh = fresh.renderer->render(view, fresh.settings, nullptr);
+  EXPECT_LE(largestDifference(lit, afresh), 1e-5);
+
+  // One map, twice (the kept map's layer may be the last), then seven again.
+  p.settings.indirect.rsmLights = 1;
+  for (int frame = 0; frame < 2; ++frame) {
+    FrameStats one;
+    p.renderer->render(view, p.settings, &one);
+    EXPECT_EQ(one.indirect.rsmLights, 1);
+  }
+  p.settings.indirect.rsmLights = 8;
+  FrameStats again;
+  const Image all = p.renderer->render(view, p.settings, &again);
+  EXPECT_EQ(again.indirect.rsmLights, 7);
+  std::cout << again.indirect.caches << " caches; largest difference from a fresh frame "
+            << largestDifference(all, afresh) << "\n";
+  EXPECT_LE(largestDifference(all, afresh), 1e-5);
 }
 
 }  // namespace
