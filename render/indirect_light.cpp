@@ -151,6 +151,21 @@ bool IndirectLight::updateMaps(const Scene& scene, const GpuScene& gpu,
   return changed;
 }
 
+int IndirectLight::gatherLayers(std::vector<int>& layers) {
+  int passes = 0;
+  for (int layer = 0; layer < kMaxCacheLayers; ++layer) {
+    std::vector<long long> ids;
+    for (const Map& m : maps_)
+      if (m.layer == layer) ids.push_back(m.id);
+    if (ids.empty()) continue;
+    caches_->startLayer(layer, std::move(ids));
+    for (const Map& m : maps_)
+      if (m.layer == layer) passes += caches_->gather(layer, *m.rsm, *m.clusters, m.nearRadius);
+    layers.push_back(layer);
+  }
+  return passes;
+}
+
 IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
                                    const GeometryPass& geometry, const GBuffer& camera,
                                    const View& view, const std::vector<Light>& lights,
@@ -198,21 +213,10 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   start = Clock::now();
   glBindVertexArray(emptyVao_.id());
   std::vector<int> layers;
-  if (caches) {
-    for (int layer = 0; layer < kMaxCacheLayers; ++layer) {
-      std::vector<long long> ids;
-      for (const Map& m : maps_)
-        if (m.layer == layer) ids.push_back(m.id);
-      if (ids.empty()) continue;
-      caches_->startLayer(layer, std::move(ids));
-      for (const Map& m : maps_)
-        if (m.layer == layer)
-          stats.passes += caches_->gather(layer, *m.rsm, *m.clusters, m.nearRadius);
-      layers.push_back(layer);
-    }
-  } else {
+  if (caches)
+    stats.passes = gatherLayers(layers);
+  else
     for (const Map& m : maps_) stats.passes += gather(camera, *m.rsm);
-  }
   if (caches) {  // once every layer has gathered
     stats.cachesKept = caches_->kept();
     stats.cachesGathered = caches_->gathered();

@@ -103,6 +103,8 @@ class IndirectLight {
   bool updateMaps(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
                   const std::vector<Light>& lights, const RsmChoice& choice);
   void renderMap(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry, Map& m);
+  // Gathers each layer's maps into the caches; appends the layers used; returns the passes.
+  int gatherLayers(std::vector<int>& layers);
   int rsmSize_;
   std::vector<Map> maps_;       // the last frame's, in the order of its choice
   long long mapsRendered_ = 0;  // maps rendered so far (their ids)
