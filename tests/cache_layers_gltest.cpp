@@ -3,15 +3,11 @@
 // changes renders and gathers that map (and its layer's others) alone, the others keep
 // theirs, and the frame matches one made afresh.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <iostream>
 
-#include "generators/scene_builder.h"
 #include "render/render_job.h"
-#include "scene/gltf_loader.h"
 #include "tests/gl_support.h"
 
 namespace manylight::testing {
@@ -19,28 +15,32 @@ namespace {
 
 constexpr int kWidth = 96, kHeight = 72;
 
-// The Cornell-like room with `extra` more lights: point, spot, directional, point, … The room's
-// spot and the extra spots and directional lights may have maps.
-Scene roomWithLights(int extra) {
-  context();
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("manylight_layers_" + std::to_string(::getpid()) + ".glb"))
-                               .string();
-  CornellOptions options;
-  options.extraLights = extra;
-  writeCornellScene(path, options);
-  Scene s = loadGltf(path);
-  std::filesystem::remove(path);
-  return s;
-}
-
-TEST(Indirect, OneChangedLightGathersItsMapAlone) {
-  const Scene room = roomWithLights(5);  // four maps
+// Caches with every candidate given a map, in any renderer: the same maps.
+RenderRequest everyMap() {
   RenderRequest request;
   request.width = kWidth;
   request.height = kHeight;
   request.indirect.mode = Indirect::Caches;
-  request.indirect.rsmLights = 8;  // every candidate, in any renderer: the same maps
+  request.indirect.rsmLights = 8;
+  return request;
+}
+
+// `room` with its last light that may have a map, other than the room's spot, 1.5× as bright,
+// as `p`'s renderer is told.
+Scene brightened(const Scene& room, PreparedRender& p) {
+  int changed = -1;
+  for (std::size_t i = 1; i < room.lights.size(); ++i)
+    if (room.lights[i].type != LightType::Point) changed = int(i);
+  EXPECT_GT(changed, 0);
+  Scene out = room;
+  out.lights[std::size_t(changed)].intensity *= 1.5f;
+  p.renderer->moveLights(out.lights, {changed}, BakeOptions{});
+  return out;
+}
+
+TEST(Indirect, OneChangedLightGathersItsMapAlone) {
+  const Scene room = cornellWith(5);  // four maps
+  const RenderRequest request = everyMap();
   PreparedRender p(room, request);
   View view = makeView(p.camera, kWidth, kHeight);
   FrameStats first;
@@ -62,13 +62,7 @@ TEST(Indirect, OneChangedLightGathersItsMapAlone) {
 
   // One chosen light other than the room's spot brightens: its map alone is rendered anew and
   // gathers every cache; the camera stays, so the other three gather none.
-  int changedLight = -1;
-  for (std::size_t i = 1; i < room.lights.size(); ++i)
-    if (room.lights[i].type != LightType::Point) changedLight = int(i);
-  ASSERT_GT(changedLight, 0);
-  Scene changed = room;
-  changed.lights[std::size_t(changedLight)].intensity *= 1.5f;
-  p.renderer->moveLights(changed.lights, {changedLight}, BakeOptions{});
+  const Scene changed = brightened(room, p);
   FrameStats relit;
   const Image lit = p.renderer->render(view, p.settings, &relit);
   EXPECT_FALSE(relit.indirect.mapsKept);
@@ -88,12 +82,8 @@ TEST(Indirect, OneChangedLightGathersItsMapAlone) {
 // Seven maps in four layers: a changed light's layer gathers anew, for each of its maps, and
 // the frame matches a fresh one; a frame with fewer maps, then one with all seven again, too.
 TEST(Indirect, MapsPastTheLayersShareThem) {
-  const Scene room = roomWithLights(9);
-  RenderRequest request;
-  request.width = kWidth;
-  request.height = kHeight;
-  request.indirect.mode = Indirect::Caches;
-  request.indirect.rsmLights = 8;  // every candidate
+  const Scene room = cornellWith(9);
+  const RenderRequest request = everyMap();
   PreparedRender p(room, request);
   const View view = makeView(p.camera, kWidth, kHeight);
   FrameStats first;
@@ -101,13 +91,7 @@ TEST(Indirect, MapsPastTheLayersShareThem) {
   ASSERT_EQ(first.indirect.rsmLights, 7);
   EXPECT_EQ(first.indirect.cachesGathered, 7LL * first.indirect.caches);
 
-  int changedLight = -1;
-  for (std::size_t i = 1; i < room.lights.size(); ++i)
-    if (room.lights[i].type == LightType::Spot) changedLight = int(i);
-  ASSERT_GT(changedLight, 0);
-  Scene changed = room;
-  changed.lights[std::size_t(changedLight)].intensity *= 1.5f;
-  p.renderer->moveLights(changed.lights, {changedLight}, BakeOptions{});
+  const Scene changed = brightened(room, p);
   FrameStats relit;
   const Image lit = p.renderer->render(view, p.settings, &relit);
   EXPECT_EQ(relit.indirect.mapsRendered, 1);

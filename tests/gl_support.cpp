@@ -1,8 +1,15 @@
 #include "tests/gl_support.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
+#include <string>
+
+#include "generators/scene_builder.h"
+#include "scene/gltf_loader.h"
 
 namespace manylight::testing {
 
@@ -19,6 +26,21 @@ double largestDifference(const Image& a, const Image& b) {
     peak = std::max({peak, double(a.rgba[i]), double(b.rgba[i])});
   }
   return diff / std::max(peak, 1e-30);
+}
+
+Scene cornellWith(int extraLights) {
+  context();
+  // Per process: ctest runs the tests side by side, each in its own.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("manylight_cornell_" + std::to_string(extraLights) + "_" +
+                             std::to_string(::getpid()) + ".glb"))
+                               .string();
+  CornellOptions options;
+  options.extraLights = extraLights;
+  writeCornellScene(path, options);
+  Scene s = loadGltf(path);
+  std::filesystem::remove(path);
+  return s;
 }
 
 }  // namespace manylight::testing

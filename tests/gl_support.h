@@ -2,6 +2,7 @@
 // What the GL tests share beyond tests/test_support.h: one GL context per process.
 #include "gl/context.h"
 #include "image/image.h"
+#include "scene/scene.h"
 
 namespace manylight::testing {
 
@@ -10,5 +11,9 @@ gl::Context& context();
 
 // The largest channel difference between two frames of one size over the larger of their peaks.
 double largestDifference(const Image& a, const Image& b);
+
+// The Cornell-like room with its spot and `extraLights` more (generators/scene_builder.h:
+// point, spot, directional, point, …), written as a GLB and loaded as users load it.
+Scene cornellWith(int extraLights);
 
 }  // namespace manylight::testing

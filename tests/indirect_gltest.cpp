@@ -5,11 +5,9 @@
 // quadrature; the GPU sums the reflective shadow map's texels instead. Their difference is the
 // map's own discretisation error, stated below.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <iostream>
 
@@ -18,7 +16,6 @@
 #include "render/light_caches.h"
 #include "render/render_job.h"
 #include "render/rsm_choice.h"
-#include "scene/gltf_loader.h"
 #include "scene/shading_model.h"
 #include "tests/gl_support.h"
 
@@ -27,23 +24,6 @@ namespace {
 
 constexpr int kWidth = 96, kHeight = 72;
 constexpr double kPi = shading::kPi;
-
-// The Cornell-like room with its spot and `extraLights` more (generators/scene_builder.h),
-// written as a GLB and loaded as users load it.
-Scene cornellWith(int extraLights) {
-  context();
-  // Per process: ctest runs the tests side by side, each in its own.
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("manylight_indirect_" + std::to_string(extraLights) + "_" +
-                             std::to_string(::getpid()) + ".glb"))
-                               .string();
-  CornellOptions options;
-  options.extraLights = extraLights;
-  writeCornellScene(path, options);
-  Scene s = loadGltf(path);
-  std::filesystem::remove(path);
-  return s;
-}
 
 const Scene& cornell() {
   static const Scene scene = cornellWith(0);
