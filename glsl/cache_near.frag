@@ -27,7 +27,10 @@ uniform sampler3D uGrid;
 // Per cell, the cells (x, y, z within the cascade) holding entries whose box lies within the
 // cascade's reach of the cell's box: those a pixel in the cell reads
 uniform sampler2D uNeighbours;
-uniform sampler3D uPlanes;         // per cell: the plane its texels share (n, n·p), or 0
+// Per cell: the plane the most of its texels share (n, n·p), or 0, and how many of its
+// entries come before those whose texels all lie on it
+uniform sampler3D uPlanes;
+uniform sampler3D uPlaneBefore;
 uniform vec3 uGridOrigin;
 uniform float uGridCell[8];
 uniform float uGridReach[8];   // per cascade, the farthest an entry's light reaches
@@ -114,10 +117,11 @@ vec3 nearLight(int k, vec3 x, vec3 n) {
       // light from it.
       count = 0;
     } else {
-      // In or behind the plane of all the cell's texels, x gets no light from them: each
-      // sends its light to the side its normal faces.
+      // In or behind the plane of the cell's last entries' texels, x gets no light from
+      // them: each sends its light to the side its normal faces.
       vec4 plane = texelFetch(uPlanes, cell, 0);
-      if (plane.xyz != vec3(0.0) && dot(plane.xyz, x) - plane.w <= tolerance) count = 0;
+      if (plane.xyz != vec3(0.0) && dot(plane.xyz, x) - plane.w <= tolerance)
+        count = int(texelFetch(uPlaneBefore, cell, 0).r);
     }
     int first = max(uFirst[k] - seen, 0), last = min(uFirst[k] + uCount[k] - seen, count);
     sum += cellLight(int(range.x), first, last, x, n, cascadeRadius);

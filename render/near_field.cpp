@@ -257,38 +257,68 @@ void NearField::cascadePasses(const std::vector<Entry>& entries, const std::vect
 // 0 where they do not share one: a pixel in that plane or behind it gets no light from them,
 // since each sends its light only to the side it faces, so it skips the cell.
 std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
-                                             const std::vector<int>& list,
-                                             const std::vector<glm::vec2>& ranges,
-                                             float tolerance) const {
+                                             std::vector<int>& list,
+                                             const std::vector<glm::vec2>& ranges, float tolerance,
+                                             std::vector<float>& before) const {
   std::vector<glm::vec4> planes(ranges.size(), glm::vec4(0.0f));
+  before.assign(ranges.size(), 0.0f);
+  // Whether every texel of entry `e` lies on the plane (n, offset).
+  const auto onPlane = [&](const Entry& e, glm::vec3 n, float offset) {
+    for (int i = e.first; i < e.first + e.count; ++i) {
+      const Texel& t = texels_[std::size_t(i)];
+      if (glm::dot(glm::vec3(t.normalArea), n) <= 0.9999f ||
+          std::abs(glm::dot(n, glm::vec3(t.position)) - offset) > tolerance)
+        return false;
+    }
+    return true;
+  };
+  std::vector<char> on;
   for (std::size_t c = 0; c < ranges.size(); ++c) {
     const std::size_t first = std::size_t(ranges[c].x), count = std::size_t(ranges[c].y);
     if (count == 0) continue;
-    const Texel& t0 = texels_[std::size_t(entries[std::size_t(list[first])].first)];
-    const glm::vec3 n = glm::normalize(glm::vec3(t0.normalArea));
-    const float offset = glm::dot(n, glm::vec3(t0.position));
-    bool shared = true;
-    for (std::size_t j = first; shared && j < first + count; ++j) {
-      const Entry& e = entries[std::size_t(list[j])];
-      for (int i = e.first; shared && i < e.first + e.count; ++i) {
-        const Texel& t = texels_[std::size_t(i)];
-        shared = glm::dot(glm::vec3(t.normalArea), n) > 0.9999f &&
-                 std::abs(glm::dot(n, glm::vec3(t.position)) - offset) <= tolerance;
+    // Candidates: the planes of the first texels of the cell's first kPlaneCandidates
+    // entries; the one the most texels lie on wins.
+    glm::vec4 best(0.0f);
+    long long bestTexels = 0;
+    for (std::size_t j = first; j < first + std::min(count, kPlaneCandidates); ++j) {
+      const Texel& t0 = texels_[std::size_t(entries[std::size_t(list[j])].first)];
+      const glm::vec3 n = glm::normalize(glm::vec3(t0.normalArea));
+      const float offset = glm::dot(n, glm::vec3(t0.position));
+      long long texels = 0;
+      for (std::size_t i = first; i < first + count; ++i) {
+        const Entry& e = entries[std::size_t(list[i])];
+        if (onPlane(e, n, offset)) texels += e.count;
       }
+      if (texels > bestTexels) best = glm::vec4(n, offset), bestTexels = texels;
     }
-    if (shared) planes[c] = glm::vec4(n, offset);
+    if (bestTexels == 0) continue;
+    // The entries off the plane first, then those on it (the tail a pixel in or behind the
+    // plane leaves out), each part in its order.
+    on.assign(count, 0);
+    for (std::size_t i = 0; i < count; ++i)
+      on[i] = onPlane(entries[std::size_t(list[first + i])], glm::vec3(best), best.w);
+    std::vector<int> cellList(list.begin() + std::ptrdiff_t(first),
+                              list.begin() + std::ptrdiff_t(first + count));
+    std::size_t at = first;
+    for (int part = 0; part < 2; ++part)
+      for (std::size_t i = 0; i < count; ++i)
+        if (on[i] == part) list[at++] = cellList[i];
+    planes[c] = best;
+    before[c] = float(std::count(on.begin(), on.end(), 0));
   }
   return planes;
 }
 
 // Per cascade's cell, stacked in z in volumes of `size`: its first entry and their count, then
-// its neighbourLists' count and first (grid_), and cellPlanes (planes_).
+// its neighbourLists' count and first (grid_), and cellPlanes (planes_, planeBefore_).
 void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
                             const std::vector<std::vector<glm::vec2>>& lists,
-                            const std::vector<std::vector<glm::vec4>>& planes) {
+                            const std::vector<std::vector<glm::vec4>>& planes,
+                            const std::vector<std::vector<float>>& before) {
   std::vector<glm::vec4> volume(std::size_t(size.x) * std::size_t(size.y) * std::size_t(size.z),
                                 glm::vec4(0.0f)),
       planeVolume(volume.size(), glm::vec4(0.0f));
+  std::vector<float> beforeVolume(volume.size(), 0.0f);
   for (std::size_t k = 0; k < ranges.size(); ++k) {
     const glm::ivec3 cells = cells_[k];
     for (int z = 0; z < cells.z; ++z)
@@ -301,10 +331,17 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
           const std::size_t c = std::size_t((z * cells.y + y) * cells.x + x);
           volume[at] = glm::vec4(ranges[k][c], lists[k][c].y, lists[k][c].x);
           planeVolume[at] = planes[k][c];
+          beforeVolume[at] = before[k][c];
         }
   }
   upload3d(grid_, size, volume);
   upload3d(planes_, size, planeVolume);
+  glBindTexture(GL_TEXTURE_3D, planeBefore_.id());
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size.x, size.y, size.z, 0, GL_RED, GL_FLOAT,
+               beforeVolume.data());
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_3D, 0);
 }
 
 // The entries of every cascade, in their cells' order, then the texels of the clusters as
@@ -362,6 +399,7 @@ void NearField::upload(const CacheGrid& grid) {
   std::vector<Entry> ordered;                  // every cascade's entries in its cells' order
   std::vector<std::vector<glm::vec2>> ranges;  // per cascade, per cell: first entry, count
   std::vector<std::vector<glm::vec4>> planes;  // per cascade, per cell: cellPlanes
+  std::vector<std::vector<float>> before;      // and the entries before its plane's
   std::vector<std::vector<glm::vec2>> lists;   // per cascade, per cell: neighbourLists
   std::vector<glm::vec4> neighbours;           // every cascade's neighbourLists
   cell_.clear(), reach_.clear(), spread_.clear(), cells_.clear(), firstZ_.clear();
@@ -380,7 +418,8 @@ void NearField::upload(const CacheGrid& grid) {
     glm::ivec3 cells;
     std::vector<int> list;
     std::vector<glm::vec2> r = binCascade(points, lo, hi, reach, list, cell, cells);
-    planes.push_back(cellPlanes(entries, list, r, kPlaneTolerance * cell));
+    before.emplace_back();
+    planes.push_back(cellPlanes(entries, list, r, kPlaneTolerance * cell, before.back()));
     for (const Entry& e : entries) clusterEntries_ += e.centreRadius.w > 0.0f;
     first.emplace_back(), count.emplace_back();
     // A pixel's cells lie within m of its own on each axis.
@@ -406,7 +445,7 @@ void NearField::upload(const CacheGrid& grid) {
     }
   uploadEntries(ordered);
   upload2d(neighbours_, neighbours);
-  uploadGrids(size, ranges, lists, planes);
+  uploadGrids(size, ranges, lists, planes, before);
 }
 
 int NearField::draw(const GBuffer& camera, const PixelClasses& classes) {
@@ -419,6 +458,7 @@ int NearField::draw(const GBuffer& camera, const PixelClasses& classes) {
   bindSampler(p, "uEntryFlux", GL_TEXTURE_2D, fluxes_.id(), 5);
   bindSampler(p, "uGrid", GL_TEXTURE_3D, grid_.id(), 6);
   bindSampler(p, "uPlanes", GL_TEXTURE_3D, planes_.id(), 7);
+  bindSampler(p, "uPlaneBefore", GL_TEXTURE_3D, planeBefore_.id(), 9);
   bindSampler(p, "uNeighbours", GL_TEXTURE_2D, neighbours_.id(), 8);
   setCascadeUniforms(p, cascades_);
   const int k = std::min(cascades_.cascades, int(cell_.size()));

@@ -50,6 +50,9 @@ inline constexpr float kNearClusterSpread = 0.25f;
 // where it is summed texel by texel; NearField::cascadePasses): two cascades' worth stays under
 // llvmpipe's 65,535 loop iterations per invocation.
 inline constexpr int kNearTexelsPerPass = 30000;
+// A cell's plane (NearField::cellPlanes) is sought among those of its first this many
+// entries.
+inline constexpr std::size_t kPlaneCandidates = 4;
 
 class NearField {
  public:
@@ -100,17 +103,23 @@ class NearField {
   std::vector<std::vector<int>> passFirst_, passCount_;
   // Per cascade, its entries ordered by the cascade's grid cell (the entry textures); per
   // cell, its range of them, its neighbour list's, and its plane; the neighbour lists.
-  gl::Texture centres_, normals_, fluxes_, grid_, planes_, neighbours_;
+  gl::Texture centres_, normals_, fluxes_, grid_, planes_, planeBefore_, neighbours_;
   std::vector<Entry> cascadeEntries(float cell) const;
   static void cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
                             const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
                             std::vector<int>& first, std::vector<int>& count);
-  std::vector<glm::vec4> cellPlanes(const std::vector<Entry>& entries,
-                                    const std::vector<int>& lists,
-                                    const std::vector<glm::vec2>& ranges, float tolerance) const;
+  // Per cell of `ranges` (its entries in `list`), the plane (n, n·p) that the most of its
+  // texels lie on (within `tolerance`), or 0 where none does; the entries whose texels all
+  // lie on it are moved to the end of the cell's part of `list`, and `before` gets per cell
+  // the count of those before them. A pixel in or behind the plane reads those alone: the
+  // others send it no light (each texel lights the side its normal faces).
+  std::vector<glm::vec4> cellPlanes(const std::vector<Entry>& entries, std::vector<int>& list,
+                                    const std::vector<glm::vec2>& ranges, float tolerance,
+                                    std::vector<float>& before) const;
   void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
                    const std::vector<std::vector<glm::vec2>>& lists,
-                   const std::vector<std::vector<glm::vec4>>& planes);
+                   const std::vector<std::vector<glm::vec4>>& planes,
+                   const std::vector<std::vector<float>>& before);
   void uploadEntries(const std::vector<Entry>& ordered);
 };
 

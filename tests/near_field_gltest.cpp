@@ -183,6 +183,51 @@ TEST(NearField, ClustersMatchEveryTexelSummed) {
   EXPECT_LT(sumDiff / sumOracle, 0.003);
 }
 
+// Pixels on the corner's floor and wall, each facing out of its own plane: in the cells where
+// the two meet, a pixel on the plane most texels share reads only the other's entries
+// (NearField::cellPlanes lists them first), a pixel on the other reads them all; each within
+// 2.5% of the sum (floored at 1% of the largest pixel's), as clusters allow.
+TEST(NearField, PixelsOnAPlaneReadTheCellsOtherTexels) {
+  context();
+  const Map map = cornerMap();
+  NearField near;
+  const float radius = nearRadius(map.flux);
+  near.add(map.position, map.normal, map.flux, clusterRsm(map.position, map.normal, map.flux, kMap),
+           radius);
+  const CacheGrid grid = cacheGrid(glm::vec3(0.32f, 0.3f, 0.3f), kCell, 1);
+  near.upload(grid);
+  std::vector<float> position(4 * kSide * kSide), normal(position.size());
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (std::size_t i = 0; i < position.size(); i += 4) {
+    const bool floor = (i / 4) % 2 == 0;
+    // Within 0.2 of the corner's edge, where cells hold both planes' texels.
+    const float u = 0.64f * unit(random), v = 0.2f * unit(random);
+    const glm::vec3 p = floor ? glm::vec3(u, 0.0f, v) : glm::vec3(u, v, 0.0f);
+    const glm::vec3 n = floor ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+    for (int c = 0; c < 3; ++c)
+      position[i + std::size_t(c)] = p[c], normal[i + std::size_t(c)] = n[c];
+    position[i + 3] = normal[i + 3] = 1.0f;
+  }
+  int passes = 0;
+  const std::vector<float> radiance = drawNear(near, grid, kSide, position, normal, passes);
+  const double r = std::max(double(radius), double(kNearCells * kCell));
+  std::vector<double> expected;
+  double largest = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < position.size(); i += 4) {
+    expected.push_back(oracle(map, glm::dvec3(position[i], position[i + 1], position[i + 2]),
+                              glm::dvec3(normal[i], normal[i + 1], normal[i + 2]), r)
+                           .r);
+    largest = std::max(largest, expected.back());
+  }
+  ASSERT_GT(largest, 0.0);
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    worst = std::max(
+        worst, std::abs(radiance[4 * i] - expected[i]) / std::max(expected[i], 0.01 * largest));
+  std::cout << "pixels on the planes: worst |near - oracle| over the oracle " << worst << "\n";
+  EXPECT_LT(worst, 0.025);
+}
+
 // Pixels above a map of 256² texels whose clusters are not flat, each summed texel by texel:
 // 16 times as many loop iterations as entries, so the near field takes several passes. A
 // second map far away, earlier in the cells' order, must not shift which entries a pass
