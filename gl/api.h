@@ -38,6 +38,7 @@
   X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                           \
   X(PFNGLTEXSUBIMAGE2DPROC, glTexSubImage2D)                     \
   X(PFNGLTEXIMAGE3DPROC, glTexImage3D)                           \
+  X(PFNGLTEXSUBIMAGE3DPROC, glTexSubImage3D)                     \
   X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                     \
   X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                     \
   X(PFNGLGENERATEMIPMAPPROC, glGenerateMipmap)                   \

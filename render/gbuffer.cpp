@@ -74,14 +74,19 @@ GBuffer::GBuffer(int width, int height) : width_(width), height_(height) {
 }
 
 std::vector<float> GBuffer::read(Target t) const {
-  std::vector<float> out(std::size_t(width_) * height_ * 4);
+  std::vector<float> out;
+  read(t, out);
+  return out;
+}
+
+void GBuffer::read(Target t, std::vector<float>& out) const {
+  out.resize(std::size_t(width_) * height_ * 4);
   glBindFramebuffer(GL_FRAMEBUFFER, geometry_.id());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadBuffer(GL_COLOR_ATTACHMENT0 + t);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, out.data());
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  return out;
 }
 
 }  // namespace manylight

@@ -27,6 +27,8 @@ class GBuffer {
   const gl::Texture& depth() const { return depth_; }
   // Target `t` read back as RGBA floats, rows bottom-up (GL's order). Throws nothing.
   std::vector<float> read(Target t) const;
+  // The same into `out`, resized (its memory kept where large enough).
+  void read(Target t, std::vector<float>& out) const;
   // Writes all targets (the G-buffer pass).
   const gl::Framebuffer& geometryFramebuffer() const { return geometry_; }
   // Writes only the radiance target, so the lighting passes may sample the others.

@@ -174,8 +174,10 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   if (settings.mode == Indirect::None) return stats;
   glFinish();  // the direct light's passes are not the choice's time
   auto start = Clock::now();
-  const std::vector<float> position = camera.read(GBuffer::kPosition);
-  const std::vector<float> normal = camera.read(GBuffer::kNormal);
+  camera.read(GBuffer::kPosition, position_);
+  camera.read(GBuffer::kNormal, normal_);
+  const std::vector<float>& position = position_;
+  const std::vector<float>& normal = normal_;
   glBindVertexArray(emptyVao_.id());
   const RsmSamples samples = sampleRsmChoice(position, normal, lights.size());
   const std::vector<double> flux = measureLightFlux(lights, samples);
@@ -201,10 +203,10 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     start = Clock::now();
     const CacheGrid grid = frameCacheGrid(settings, scene.bounds(), view.eye);
     if (!caches_) caches_ = std::make_unique<LightCaches>();
-    CacheAllocation allocation = allocateCaches(grid, position, normal);
-    stats.cachesRefused = allocation.refused;
-    classes_.upload(camera, allocation.classes);
-    caches_->upload(grid, std::move(allocation), settings.shL2);
+    allocateCaches(grid, position, normal, allocation_);
+    stats.cachesRefused = allocation_.refused;
+    classes_.upload(camera, allocation_.classes);
+    caches_->upload(grid, allocation_, settings.shL2);
     stats.caches = caches_->count();
     stats.cascades = grid.cascades;
     stats.cacheCell = grid.cell[0];

@@ -113,6 +113,10 @@ class IndirectLight {
   std::unique_ptr<LightCaches> caches_;  // made at the first frame with caches
   NearField near_;
   PixelClasses classes_;  // of the camera's pixels, for the caches' per-pixel passes
+  // The frame's G-buffer read back, and its caches: kept from frame to frame for their memory
+  // (allocateCaches).
+  std::vector<float> position_, normal_;
+  CacheAllocation allocation_;
   RsmFluxHistory fluxHistory_;
 };
 

@@ -129,8 +129,25 @@ glm::vec3 binNormal(int bin) {
 CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& position,
                                const std::vector<float>& normal) {
   CacheAllocation a;
+  allocateCaches(grid, position, normal, a);
+  return a;
+}
+
+void allocateCaches(const CacheGrid& grid, const std::vector<float>& position,
+                    const std::vector<float>& normal, CacheAllocation& a) {
   const std::size_t n = std::size_t(grid.nodesPerAxis());
-  a.cav.assign(n * n * n * std::size_t(grid.cascades), -1.0f);
+  const std::size_t nodes = n * n * n * std::size_t(grid.cascades);
+  if (a.cav.size() == nodes) {
+    // Only the last frame's nodes hold anything but −1.
+    for (std::size_t node : a.nodes) a.cav[node] = -1.0f;
+  } else {
+    a.cav.assign(nodes, -1.0f);
+  }
+  a.positions.clear();
+  a.normals.clear();
+  a.next.clear();
+  a.nodes.clear();
+  a.refused = 0;
   // What the last pixel marked in each cascade: marking it again changes nothing, and most
   // pixels share their cell and normal bin with the one before.
   struct Marked {
@@ -177,7 +194,6 @@ CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& 
     a.classes[i] =
         std::uint8_t(kPixelCached | (exact ? kPixelCentred : 0) | (blended ? kPixelBand : 0));
   }
-  return a;
 }
 
 namespace {
@@ -253,7 +269,7 @@ void LightCaches::allocateTargets(Targets& t, int height) {
   t.height = height;
 }
 
-void LightCaches::upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2) {
+void LightCaches::upload(const CacheGrid& grid, CacheAllocation& a, bool shL2) {
   const bool keep = shL2 == shL2_ && count_ > 0;
   grid_ = grid;
   shL2_ = shL2;
@@ -276,13 +292,28 @@ void LightCaches::upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2) 
   for (std::size_t c = 0; c < count; ++c)
     if (before[c] < 0) slot[c] = next++;
   count_ = int(count);
-  std::vector<float> cav = std::move(a.cav);
-  for (std::size_t node : a.nodes) cav[node] = float(slot[std::size_t(cav[node])]);
+  for (std::size_t node : a.nodes) a.cav[node] = float(slot[std::size_t(a.cav[node])]);
   const int n = grid.nodesPerAxis();
+  const glm::ivec3 size(n, n, n * grid.cascades);
+  // The slices holding nodes now, and with the last upload's, those that changed.
+  const std::size_t slice = std::size_t(n) * std::size_t(n);
+  glm::ivec2 slices(size.z, -1);
+  for (std::size_t node : a.nodes)
+    slices =
+        glm::ivec2(std::min(slices.x, int(node / slice)), std::max(slices.y, int(node / slice)));
+  const glm::ivec2 changed(std::min(slices.x, cavSlices_.x), std::max(slices.y, cavSlices_.y));
+  cavSlices_ = slices;
   glBindTexture(GL_TEXTURE_3D, cav_.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n, n, n * grid.cascades, 0, GL_RED, GL_FLOAT, cav.data());
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  if (size == cavSize_) {  // into the texture's memory, not new memory
+    if (changed.y >= changed.x)
+      glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, changed.x, n, n, changed.y - changed.x + 1, GL_RED,
+                      GL_FLOAT, a.cav.data() + std::size_t(changed.x) * slice);
+  } else {
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n, n, size.z, 0, GL_RED, GL_FLOAT, a.cav.data());
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    cavSize_ = size;
+  }
   glBindTexture(GL_TEXTURE_3D, 0);
   width_ = kCacheTextureWidth;
   height_ = std::max(1, (count_ + width_ - 1) / width_);

@@ -110,6 +110,13 @@ enum PixelClass : std::uint8_t {
 // the geometry), in the order the pixels first mark them, and the pixels' classes.
 CacheAllocation allocateCaches(const CacheGrid& grid, const std::vector<float>& position,
                                const std::vector<float>& normal);
+// The same, into `a`, whose vectors keep their memory from one frame to the next: the CAV
+// alone takes 17 MB at 128 cells a side and two cascades, and memory new to the process
+// costs its pages' faults, a frame's worth each frame. `a` is empty or as the last call
+// left it (LightCaches::upload rewrites only the entries of a.nodes): then only those are
+// reset.
+void allocateCaches(const CacheGrid& grid, const std::vector<float>& position,
+                    const std::vector<float>& normal, CacheAllocation& a);
 
 // The caches on the GPU: the CAV, the cache positions and their coefficients, kept per map in
 // a layer of its own and summed for the interpolation. A cache's light from a map depends
@@ -122,8 +129,9 @@ class LightCaches {
   LightCaches() = default;
   // Uploads `a`: textures grow to hold its caches. With the same basis, the caches at nodes
   // and bins the last upload also had come first (kept()), and each map's layer gathered at
-  // the last upload can keep their coefficients (gather). Throws gl::GlError.
-  void upload(const CacheGrid& grid, CacheAllocation&& a, bool shL2);
+  // the last upload can keep their coefficients (gather). Rewrites a.cav's entries from
+  // caches to their slots. Throws gl::GlError.
+  void upload(const CacheGrid& grid, CacheAllocation& a, bool shL2);
   int count() const { return count_; }
   // Caches that kept their coefficients in every layer gathered since the upload: those at
   // nodes and bins the last upload also had, or 0 where a layer gathered every cache.
@@ -174,6 +182,8 @@ class LightCaches {
   // previous_: per kept cache, its slot the frame before
   // links_: CacheAllocation::next, and the bin (normals_.w) beside it
   gl::Texture cav_, positions_, normals_, links_, previous_;
+  glm::ivec3 cavSize_{0};        // cav_'s texels a side, and in z for every cascade
+  glm::ivec2 cavSlices_{0, -1};  // the first and last z slices holding nodes at the last upload
   std::vector<Layer> layers_;
   Targets scratch_;  // a layer's kept caches are copied here, then the two trade places
   Targets sum_;      // Σ over the interpolated layers, where there is more than one

@@ -8,14 +8,23 @@ namespace manylight {
 using namespace gl::api;
 
 void PixelClasses::upload(const GBuffer& camera, const std::vector<std::uint8_t>& classes) {
+  const GLuint radiance = camera.target(GBuffer::kRadiance).id();
+  const bool same = width_ == camera.width() && height_ == camera.height() && radiance_ == radiance;
   width_ = camera.width();
   height_ = camera.height();
+  radiance_ = radiance;
   // GL_UNSIGNED_INT_24_8: depth in the upper 24 bits (unused), the stencil in the lower 8.
-  std::vector<std::uint32_t> texels(std::size_t(width_) * std::size_t(height_), 0);
-  for (std::size_t i = 0; i < texels.size() && i < classes.size(); ++i) texels[i] = classes[i];
+  texels_.assign(std::size_t(width_) * std::size_t(height_), 0);
+  for (std::size_t i = 0; i < texels_.size() && i < classes.size(); ++i) texels_[i] = classes[i];
   glBindTexture(GL_TEXTURE_2D, stencil_.id());
+  if (same) {  // into the texture's memory, not new memory
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8,
+                    texels_.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return;
+  }
   glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, width_, height_, 0, GL_DEPTH_STENCIL,
-               GL_UNSIGNED_INT_24_8, texels.data());
+               GL_UNSIGNED_INT_24_8, texels_.data());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glBindTexture(GL_TEXTURE_2D, 0);
