@@ -121,6 +121,15 @@ bool IndirectLight::updateMaps(const Scene& scene, const GpuScene& gpu,
       break;
     }
   }
+  // Maps that shared a layer while there were more than kMaxCacheLayers take one of their own
+  // again once there are no more (their layers then gather anew, once).
+  if (maps.size() <= std::size_t(kMaxCacheLayers))
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+      if (!placed[i] || layerMaps[std::size_t(maps[i].layer)] < 2) continue;
+      --layerMaps[std::size_t(maps[i].layer)];
+      maps[i].layer = int(std::find(layerMaps.begin(), layerMaps.end(), 0) - layerMaps.begin());
+      ++layerMaps[std::size_t(maps[i].layer)];
+    }
   // The maps not kept lend their GBuffers to the new ones.
   std::vector<Map*> spare;
   for (Map& old : maps_)

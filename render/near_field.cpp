@@ -253,9 +253,6 @@ void NearField::cascadePasses(const std::vector<Entry>& entries, const std::vect
   }
 }
 
-// Per cell, the plane (unit normal, offset n·p) all its texels lie in within `tolerance`, or
-// 0 where they do not share one: a pixel in that plane or behind it gets no light from them,
-// since each sends its light only to the side it faces, so it skips the cell.
 std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
                                              std::vector<int>& list,
                                              const std::vector<glm::vec2>& ranges, float tolerance,
@@ -266,9 +263,10 @@ std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
   const auto onPlane = [&](const Entry& e, glm::vec3 n, float offset) {
     for (int i = e.first; i < e.first + e.count; ++i) {
       const Texel& t = texels_[std::size_t(i)];
-      if (glm::dot(glm::vec3(t.normalArea), n) <= 0.9999f ||
-          std::abs(glm::dot(n, glm::vec3(t.position)) - offset) > tolerance)
-        return false;
+      // Accepted, not rejected: a plane of NaN (a texel without a normal) holds no texel.
+      const bool on = glm::dot(glm::vec3(t.normalArea), n) > 0.9999f &&
+                      std::abs(glm::dot(n, glm::vec3(t.position)) - offset) <= tolerance;
+      if (!on) return false;
     }
     return true;
   };

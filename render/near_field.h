@@ -19,8 +19,8 @@
 // a pixel its clusters, not its texels. The pixels find their entries through a world-space
 // grid per cascade, of cells as wide as the entries' reach (2r and an entry's radius) or half
 // that (kNearEntriesPerCell), built on the CPU from the maps read back: each pixel reads the
-// cells within that reach of it, and leaves out those wholly behind its surface and those
-// whose texels all lie in one plane that it is in or behind.
+// cells within that reach of it, and leaves out those wholly behind its surface, and of each
+// cell the entries on the plane most of its texels share where it is in or behind that plane.
 #include <cmath>
 #include <glm/glm.hpp>
 #include <vector>
@@ -102,7 +102,8 @@ class NearField {
   // Per pass, per cascade: its first entry and the count (in the cascade's cells' order).
   std::vector<std::vector<int>> passFirst_, passCount_;
   // Per cascade, its entries ordered by the cascade's grid cell (the entry textures); per
-  // cell, its range of them, its neighbour list's, and its plane; the neighbour lists.
+  // cell, its range of them, its neighbour list's, its plane and the count of its entries
+  // before those on the plane (cellPlanes); the neighbour lists.
   gl::Texture centres_, normals_, fluxes_, grid_, planes_, planeBefore_, neighbours_;
   std::vector<Entry> cascadeEntries(float cell) const;
   static void cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,

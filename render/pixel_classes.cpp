@@ -8,26 +8,24 @@ namespace manylight {
 using namespace gl::api;
 
 void PixelClasses::upload(const GBuffer& camera, const std::vector<std::uint8_t>& classes) {
-  const GLuint radiance = camera.target(GBuffer::kRadiance).id();
-  const bool same = width_ == camera.width() && height_ == camera.height() && radiance_ == radiance;
-  width_ = camera.width();
-  height_ = camera.height();
-  radiance_ = radiance;
+  const bool sized = width_ == camera.width() && height_ == camera.height();
   // GL_UNSIGNED_INT_24_8: depth in the upper 24 bits (unused), the stencil in the lower 8.
-  texels_.assign(std::size_t(width_) * std::size_t(height_), 0);
+  texels_.assign(std::size_t(camera.width()) * std::size_t(camera.height()), 0);
   for (std::size_t i = 0; i < texels_.size() && i < classes.size(); ++i) texels_[i] = classes[i];
   glBindTexture(GL_TEXTURE_2D, stencil_.id());
-  if (same) {  // into the texture's memory, not new memory
+  if (sized) {  // into the texture's memory, not new memory
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8,
                     texels_.data());
-    glBindTexture(GL_TEXTURE_2D, 0);
-    return;
+  } else {
+    width_ = height_ = 0;  // until the framebuffer below is complete
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, camera.width(), camera.height(), 0,
+                 GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, texels_.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   }
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, width_, height_, 0, GL_DEPTH_STENCIL,
-               GL_UNSIGNED_INT_24_8, texels_.data());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glBindTexture(GL_TEXTURE_2D, 0);
+  // Attached every upload: cheap, and a camera's radiance target may be a new texture of an
+  // old one's name.
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                          camera.target(GBuffer::kRadiance).id(), 0);
@@ -35,9 +33,11 @@ void PixelClasses::upload(const GBuffer& camera, const std::vector<std::uint8_t>
                          0);
   const GLenum one = GL_COLOR_ATTACHMENT0;
   glDrawBuffers(1, &one);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw gl::GlError("the pixel classes' framebuffer is incomplete");
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!complete) throw gl::GlError("the pixel classes' framebuffer is incomplete");
+  width_ = camera.width();
+  height_ = camera.height();
 }
 
 void PixelClasses::bind(const gl::Program& program, const GBuffer& camera, unsigned bits,

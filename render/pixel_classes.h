@@ -32,8 +32,7 @@ class PixelClasses {
   gl::Texture stencil_;                // DEPTH24_STENCIL8: the classes in the stencil
   std::vector<std::uint32_t> texels_;  // its texels, kept for their memory
   gl::Framebuffer framebuffer_;
-  int width_ = 0, height_ = 0;
-  GLuint radiance_ = 0;  // the camera's radiance target framebuffer_ draws into
+  int width_ = 0, height_ = 0;  // of stencil_, once its framebuffer was complete
 };
 
 }  // namespace manylight

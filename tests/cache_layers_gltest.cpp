@@ -116,6 +116,17 @@ TEST(Indirect, MapsPastTheLayersShareThem) {
   std::cout << again.indirect.caches << " caches; largest difference from a fresh frame "
             << largestDifference(all, afresh) << "\n";
   EXPECT_LE(largestDifference(all, afresh), 1e-5);
+
+  // Four of the seven: the kept maps that shared a layer take layers of their own (those
+  // gather anew once), and the next frame keeps every layer.
+  p.settings.indirect.rsmLights = 4;
+  FrameStats four, still;
+  const Image shrunk = p.renderer->render(view, p.settings, &four);
+  EXPECT_EQ(four.indirect.rsmLights, 4);
+  const Image kept = p.renderer->render(view, p.settings, &still);
+  EXPECT_TRUE(still.indirect.mapsKept);
+  EXPECT_EQ(still.indirect.cachesGathered, 0);
+  EXPECT_LE(largestDifference(kept, shrunk), 1e-6);
 }
 
 }  // namespace

@@ -193,5 +193,34 @@ TEST(Indirect, CachesStopAtTheBudget) {
   EXPECT_GT(many.refused, 0);
 }
 
+// An allocation made into one that held the last frame's caches (its CAV rewritten to slots,
+// as LightCaches::upload does), for cascades moved with the camera, is the one made afresh.
+TEST(Indirect, AnAllocationReusedMatchesAFreshOne) {
+  std::vector<float> position, normal;
+  for (int i = 0; i < 4000; ++i) {
+    const float t = float(i);
+    position.insert(position.end(), {std::sin(t) * 3.0f, std::cos(0.7f * t) * 2.0f,
+                                     std::sin(1.3f * t) * 4.0f, 0.0f});
+    const glm::vec3 n = i % 3 == 0 ? glm::vec3(0, 1, 0) : glm::normalize(glm::vec3(1, t, 2));
+    normal.insert(normal.end(), {n.x, n.y, n.z, i % 17 == 0 ? 0.0f : 1.0f});
+  }
+  const CacheGrid before = cacheGrid(glm::vec3(0.0f), 0.25f, 2);
+  const CacheGrid after = cacheGrid(glm::vec3(0.37f, -0.2f, 0.11f), 0.25f, 2);
+  ASSERT_EQ(before.nodesPerAxis(), after.nodesPerAxis());
+  CacheAllocation reused = allocateCaches(before, position, normal);
+  ASSERT_GT(reused.nodes.size(), 100u);
+  const float caches = float(reused.positions.size());
+  for (std::size_t node : reused.nodes) reused.cav[node] = caches - 1.0f - reused.cav[node];
+  allocateCaches(after, position, normal, reused);
+  const CacheAllocation fresh = allocateCaches(after, position, normal);
+  EXPECT_EQ(reused.cav, fresh.cav);
+  EXPECT_EQ(reused.positions, fresh.positions);
+  EXPECT_EQ(reused.normals, fresh.normals);
+  EXPECT_EQ(reused.next, fresh.next);
+  EXPECT_EQ(reused.nodes, fresh.nodes);
+  EXPECT_EQ(reused.classes, fresh.classes);
+  EXPECT_EQ(reused.refused, fresh.refused);
+}
+
 }  // namespace
 }  // namespace manylight::testing
