@@ -74,10 +74,11 @@ void upload2d(const gl::Texture& t, std::vector<glm::vec4>& texels) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
 
-void upload3d(const gl::Texture& t, glm::ivec3 size, const std::vector<glm::vec4>& texels) {
+// `texels` (floats, in `format`'s components) into `t` as a 3D texture of `internal` format.
+void upload3d(const gl::Texture& t, glm::ivec3 size, GLint internal, GLenum format,
+              const float* texels) {
   glBindTexture(GL_TEXTURE_3D, t.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA32F, size.x, size.y, size.z, 0, GL_RGBA, GL_FLOAT,
-               texels.data());
+  glTexImage3D(GL_TEXTURE_3D, 0, internal, size.x, size.y, size.z, 0, format, GL_FLOAT, texels);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glBindTexture(GL_TEXTURE_3D, 0);
@@ -332,14 +333,9 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
           beforeVolume[at] = before[k][c];
         }
   }
-  upload3d(grid_, size, volume);
-  upload3d(planes_, size, planeVolume);
-  glBindTexture(GL_TEXTURE_3D, planeBefore_.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size.x, size.y, size.z, 0, GL_RED, GL_FLOAT,
-               beforeVolume.data());
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glBindTexture(GL_TEXTURE_3D, 0);
+  upload3d(grid_, size, GL_RGBA32F, GL_RGBA, glm::value_ptr(volume[0]));
+  upload3d(planes_, size, GL_RGBA32F, GL_RGBA, glm::value_ptr(planeVolume[0]));
+  upload3d(planeBefore_, size, GL_R32F, GL_RED, beforeVolume.data());
 }
 
 // The entries of every cascade, in their cells' order, then the texels of the clusters as

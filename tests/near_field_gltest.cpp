@@ -129,18 +129,25 @@ void add(NearField& near, const Map& m, int side) {
            nearRadius(m.flux));
 }
 
+// The corner map's near field, each texel of the map's nearRadius (returned), uploaded for
+// `grid`: one cascade of kCell cells centred in the corner's room.
+float uploadCorner(const Map& map, NearField& near, CacheGrid& grid) {
+  const float radius = nearRadius(map.flux);
+  near.add(map.position, map.normal, map.flux, clusterRsm(map.position, map.normal, map.flux, kMap),
+           radius);
+  grid = cacheGrid(glm::vec3(0.32f, 0.3f, 0.3f), kCell, 1);
+  near.upload(grid);
+  return radius;
+}
+
 // Pixels in the room the corner bounds, their normals towards the corner's middle, jittered:
 // each within 2.5% of the sum (floored at 1% of the largest pixel's), all within 0.3%.
 TEST(NearField, ClustersMatchEveryTexelSummed) {
   context();
   const Map map = cornerMap();
   NearField near;
-  const float radius = nearRadius(map.flux);
-  near.add(map.position, map.normal, map.flux, clusterRsm(map.position, map.normal, map.flux, kMap),
-           radius);
-  const glm::vec3 eye(0.32f, 0.3f, 0.3f);
-  const CacheGrid grid = cacheGrid(eye, kCell, 1);
-  near.upload(grid);
+  CacheGrid grid;
+  const float radius = uploadCorner(map, near, grid);
   ASSERT_GT(near.clusters(), 0);
 
   std::vector<float> position(4 * kSide * kSide), normal(position.size());
@@ -191,11 +198,8 @@ TEST(NearField, PixelsOnAPlaneReadTheCellsOtherTexels) {
   context();
   const Map map = cornerMap();
   NearField near;
-  const float radius = nearRadius(map.flux);
-  near.add(map.position, map.normal, map.flux, clusterRsm(map.position, map.normal, map.flux, kMap),
-           radius);
-  const CacheGrid grid = cacheGrid(glm::vec3(0.32f, 0.3f, 0.3f), kCell, 1);
-  near.upload(grid);
+  CacheGrid grid;
+  const float radius = uploadCorner(map, near, grid);
   std::vector<float> position(4 * kSide * kSide), normal(position.size());
   std::mt19937 random(11);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
