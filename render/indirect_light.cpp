@@ -185,10 +185,8 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   auto start = Clock::now();
   camera.read(GBuffer::kPosition, position_);
   camera.read(GBuffer::kNormal, normal_);
-  const std::vector<float>& position = position_;
-  const std::vector<float>& normal = normal_;
   glBindVertexArray(emptyVao_.id());
-  const RsmSamples samples = sampleRsmChoice(position, normal, lights.size());
+  const RsmSamples samples = sampleRsmChoice(position_, normal_, lights.size());
   const std::vector<double> flux = measureLightFlux(lights, samples);
   std::vector<int> previous;
   for (const Map& m : maps_) previous.push_back(m.index);
@@ -212,7 +210,7 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
     start = Clock::now();
     const CacheGrid grid = frameCacheGrid(settings, scene.bounds(), view.eye);
     if (!caches_) caches_ = std::make_unique<LightCaches>();
-    allocateCaches(grid, position, normal, allocation_);
+    allocateCaches(grid, position_, normal_, allocation_);
     stats.cachesRefused = allocation_.refused;
     classes_.upload(camera, allocation_.classes);
     caches_->upload(grid, allocation_, settings.shL2);
@@ -224,13 +222,12 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   start = Clock::now();
   glBindVertexArray(emptyVao_.id());
   std::vector<int> layers;
-  if (caches)
+  if (caches) {
     stats.passes = gatherLayers(layers);
-  else
-    for (const Map& m : maps_) stats.passes += gather(camera, *m.rsm);
-  if (caches) {  // once every layer has gathered
-    stats.cachesKept = caches_->kept();
+    stats.cachesKept = caches_->kept();  // once every layer has gathered
     stats.cachesGathered = caches_->gathered();
+  } else {
+    for (const Map& m : maps_) stats.passes += gather(camera, *m.rsm);
   }
   glFinish();
   stats.gatherMs = msSince(start);

@@ -444,22 +444,25 @@ void LightCaches::interpolate(const GBuffer& camera, const PixelClasses& classes
   const std::vector<gl::Texture>& sh =
       layers.size() > 1 ? sum_.sh : layers_[std::size_t(layers[0])].targets.sh;
   // Pixels whose normal is their bin's centre, and the others; each their own cascade's share,
-  // then the next one's in the bands (glsl/cache_interpolate.frag).
-  // Compiled before the stencil is bound, so that a failure leaves no stencil test on.
-  const auto program = [&](bool next, bool centred) -> const gl::Program& {
-    std::vector<std::string> defines = basisDefines(shL2_);
-    if (centred) defines.push_back("CENTRED_NORMALS");
-    if (next) defines.push_back("NEXT_CASCADE");
-    return gl::cachedProgram("fullscreen.vert", "cache_interpolate.frag", defines, {"oRadiance"});
-  };
-  for (bool next : {false, true})
-    for (bool centred : {true, false}) program(next, centred);
-  for (bool next : {false, true}) {
-    for (bool centred : {true, false}) {
-      const gl::Program& p = program(next, centred);
+  // then the next one's in the bands (glsl/cache_interpolate.frag). The programs are compiled
+  // before the stencil is bound, so that a failure leaves no stencil test on.
+  const gl::Program* programs[2][2];  // [next][centred]
+  for (int next = 0; next < 2; ++next)
+    for (int centred = 0; centred < 2; ++centred) {
+      std::vector<std::string> defines = basisDefines(shL2_);
+      if (centred) defines.push_back("CENTRED_NORMALS");
+      if (next) defines.push_back("NEXT_CASCADE");
+      programs[next][centred] =
+          &gl::cachedProgram("fullscreen.vert", "cache_interpolate.frag", defines, {"oRadiance"});
+    }
+  for (int next = 0; next < 2; ++next) {
+    for (int centred = 0; centred < 2; ++centred) {
+      const gl::Program& p = *programs[next][centred];
       p.use();
+      // The band bit is tested only for the next cascade's share: the own share takes both.
       const unsigned mask = kPixelCached | kPixelCentred | (next ? kPixelBand : 0);
-      classes.bind(p, camera, mask & ~(centred ? 0u : unsigned(kPixelCentred)), mask);
+      const unsigned bits = kPixelCached | (centred ? kPixelCentred : 0) | (next ? kPixelBand : 0);
+      classes.bind(p, camera, bits, mask);
       bindSampler(p, "uCav", GL_TEXTURE_3D, cav_.id(), 3);
       for (std::size_t i = 0; i < kCacheTargets; ++i)
         bindSampler(p, kShNames[i], GL_TEXTURE_2D, sh[i].id(), 4 + int(i));

@@ -271,7 +271,6 @@ std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
     }
     return true;
   };
-  std::vector<char> on;
   for (std::size_t c = 0; c < ranges.size(); ++c) {
     const std::size_t first = std::size_t(ranges[c].x), count = std::size_t(ranges[c].y);
     if (count == 0) continue;
@@ -293,17 +292,12 @@ std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
     if (bestTexels == 0) continue;
     // The entries off the plane first, then those on it (the tail a pixel in or behind the
     // plane leaves out), each part in its order.
-    on.assign(count, 0);
-    for (std::size_t i = 0; i < count; ++i)
-      on[i] = onPlane(entries[std::size_t(list[first + i])], glm::vec3(best), best.w);
-    std::vector<int> cellList(list.begin() + std::ptrdiff_t(first),
-                              list.begin() + std::ptrdiff_t(first + count));
-    std::size_t at = first;
-    for (int part = 0; part < 2; ++part)
-      for (std::size_t i = 0; i < count; ++i)
-        if (on[i] == part) list[at++] = cellList[i];
+    const auto begin = list.begin() + std::ptrdiff_t(first);
+    const auto off = std::stable_partition(begin, begin + std::ptrdiff_t(count), [&](int e) {
+      return !onPlane(entries[std::size_t(e)], glm::vec3(best), best.w);
+    });
     planes[c] = best;
-    before[c] = float(std::count(on.begin(), on.end(), 0));
+    before[c] = float(off - begin);
   }
   return planes;
 }
