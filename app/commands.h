@@ -112,12 +112,14 @@ struct MethodArgs {
   int rsmLights = IndirectSettings{}.rsmLights, rsmSize = IndirectSettings{}.rsmSize;
   std::string cacheBasis = "sh2";
   float cacheCell = 0.0f;
+  double rsmLeastShare = IndirectSettings{}.rsmLeastShare;
 
   // Throws Error for an unknown method.
   Method parsed() const { return parseMethod(method); }
   // The indirect light these options ask for.
   IndirectSettings indirectSettings() const {
-    return {parseIndirect(indirect), rsmLights, rsmSize, cacheBasis == "sh2", cacheCell};
+    return {parseIndirect(indirect), rsmLights, rsmSize, cacheBasis == "sh2", cacheCell,
+            rsmLeastShare};
   }
   // The lightcuts settings these options give (trees aside).
   LightcutsSettings lightcuts() const;

@@ -197,6 +197,11 @@ void addMethodOptions(CLI::App* app, MethodArgs& a) {
                   "view that get a reflective shadow map")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
+  app->add_option("--rsm-least-share", a.rsmLeastShare,
+                  "--indirect: the least share of the direct flux into the view a light sends "
+                  "for a map (0: the --rsm-lights largest get maps whatever their share)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   app->add_option("--rsm-size", a.rsmSize, "--indirect: a reflective shadow map's width and height")
       ->capture_default_str()
       ->check(CLI::IsMember({16, 32, 64, 128, 256, 512}));
@@ -240,6 +245,7 @@ nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectSta
           {"rsm_candidates", s.candidates},
           {"rsm_texels", s.rsmTexels},
           {"rsm_flux_share", s.fluxShare},
+          {"rsm_below_share", s.belowShare},
           {"gather_passes", s.passes},
           {"choose_ms", s.chooseMs},
           {"rsm_ms", s.rsmMs},

@@ -190,9 +190,10 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   const std::vector<double> flux = measureLightFlux(lights, samples);
   std::vector<int> previous;
   for (const Map& m : maps_) previous.push_back(m.index);
-  const RsmChoice choice =
-      chooseRsmLights(lights, fluxHistory_.add(lights, flux), settings.rsmLights, previous);
+  const RsmChoice choice = chooseRsmLights(lights, fluxHistory_.add(lights, flux),
+                                           settings.rsmLights, previous, settings.rsmLeastShare);
   stats.candidates = choice.candidates;
+  stats.belowShare = choice.belowShare;
   stats.fluxShare = fluxShare(choice.lights, flux);  // of this frame's flux, not the history's
   stats.chooseMs = msSince(start);
   start = Clock::now();
@@ -205,6 +206,11 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   stats.rsmMs = msSince(start);
   stats.rsmLights = int(maps_.size());
   for (const Map& m : maps_) stats.rsmTexels += m.texels;
+  if (maps_.empty()) {  // no light sends the least share: no indirect light
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    return stats;
+  }
   const bool caches = settings.mode == Indirect::Caches;
   if (caches) {
     start = Clock::now();

@@ -34,6 +34,8 @@ struct IndirectSettings {
   int rsmSize = 64;        // a map's width and height in texels
   bool shL2 = true;        // caches: SH L2 (9 coefficients) or SH L1 (4)
   float cacheCell = 0.0f;  // caches: the smallest cascade's cell edge; 0: kCacheCellsPerScene
+  // The least share of the view's flux a light sends for a map (chooseRsmLights)
+  double rsmLeastShare = kRsmLeastShare;
 };
 // The default smallest cell edge: the scene's bounding box diagonal over this.
 inline constexpr float kCacheCellsPerScene = 128.0f;
@@ -44,6 +46,7 @@ struct IndirectStats {
   bool mapsKept = false;    // the maps were the last frame's (IndirectLight::light)
   int mapsRendered = 0;     // maps rendered anew: the others were the last frame's
   int candidates = 0;       // spot and directional lights
+  int belowShare = 0;       // lights passed over for their small share (RsmChoice::belowShare)
   long long rsmTexels = 0;  // map texels that reflect flux, over all maps
   double fluxShare = 1.0;   // the chosen lights' share of this frame's flux (fluxShare)
   int passes = 0;           // gather passes

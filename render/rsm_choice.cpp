@@ -30,8 +30,10 @@ RsmSamples sampleRsmChoice(const std::vector<float>& position, const std::vector
 }
 
 RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<double>& flux,
-                          int count, const std::vector<int>& previous) {
+                          int count, const std::vector<int>& previous, double leastShare) {
   RsmChoice choice;
+  const double least = leastShare * std::accumulate(flux.begin(), flux.end(), 0.0);
+  const auto enough = [&](int i) { return flux[std::size_t(i)] >= least; };
   std::vector<int> candidates;
   for (std::size_t i = 0; i < lights.size(); ++i) {
     if (lights[i].type != LightType::Point) candidates.push_back(int(i));
@@ -47,14 +49,18 @@ RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<do
   for (int i : previous) {
     const bool candidate =
         i >= 0 && std::size_t(i) < lights.size() && lights[std::size_t(i)].type != LightType::Point;
-    if (candidate && choice.lights.size() < k && flux[std::size_t(i)] > 0.0 &&
+    if (candidate && choice.lights.size() < k && flux[std::size_t(i)] > 0.0 && enough(i) &&
         flux[std::size_t(i)] >= kRsmChoiceKeep * weakest &&
         std::find(choice.lights.begin(), choice.lights.end(), i) == choice.lights.end())
       choice.lights.push_back(i);
   }
   for (std::size_t j = 0; j < k && choice.lights.size() < k; ++j) {
-    if (std::find(choice.lights.begin(), choice.lights.end(), candidates[j]) == choice.lights.end())
+    if (std::find(choice.lights.begin(), choice.lights.end(), candidates[j]) != choice.lights.end())
+      continue;
+    if (enough(candidates[j]))
       choice.lights.push_back(candidates[j]);
+    else
+      ++choice.belowShare;
   }
   return choice;
 }

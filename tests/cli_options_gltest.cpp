@@ -120,6 +120,10 @@ TEST(CliOptions, FloatOptionsSayAFiniteNumberIsExpected) {
        "manylight: --fps: expected a finite number, got 'nan'\n"},
       {"compare " + out + " " + out + " --max-fraction nan",
        "manylight: --max-fraction: expected a finite number, got 'nan'\n"},
+      {"render " + scene + " -o " + out + " --indirect caches --rsm-least-share nan",
+       "manylight: --rsm-least-share: expected a finite number, got 'nan'\n"},
+      {"render " + scene + " -o " + out + " --indirect caches --rsm-least-share 2",
+       "manylight: --rsm-least-share: Value 2 not in range 0.000000 to 1.000000\n"},
   };
   for (const Case& c : cases) {
     const ProcessResult r = manylight(c.args);

@@ -81,13 +81,15 @@ struct Frame {
   std::vector<float> position, normal, albedo;  // the G-buffer, rows bottom-up
 };
 
-Frame render(const Scene& scene, Indirect mode, int rsmSize, bool shL2 = true) {
+Frame render(const Scene& scene, Indirect mode, int rsmSize, bool shL2 = true,
+             double leastShare = kRsmLeastShare) {
   RenderRequest request;
   request.width = kWidth;
   request.height = kHeight;
   request.indirect.mode = mode;
   request.indirect.rsmSize = rsmSize;
   request.indirect.shL2 = shL2;
+  request.indirect.rsmLeastShare = leastShare;
   PreparedRender p(scene, request);
   Frame f;
   f.image = p.renderer->render(makeView(p.camera, kWidth, kHeight), p.settings, &f.stats);
@@ -203,22 +205,49 @@ TEST(Indirect, ColourBleedsFromTheWallsOntoTheFloor) {
 }
 
 // With many lights, maps go to the spot and directional lights sending the most flux into
-// the view, and --stats says what share of the flux they cover.
+// the view, and --stats says what share of the flux they cover. A light sending under
+// kRsmLeastShare of it gets none: of the room's 4,096 lights, only the spot.
 TEST(Indirect, MapsGoToTheLightsWithTheMostFlux) {
   const Scene& scene = cornell4096();
   int candidates = 0;
   for (const Light& l : scene.lights) candidates += l.type != LightType::Point;
-  const Frame f = render(scene, Indirect::Exact, 64);
-  EXPECT_EQ(f.stats.indirect.rsmLights, IndirectSettings{}.rsmLights);
-  EXPECT_EQ(f.stats.indirect.candidates, candidates);
-  EXPECT_EQ(f.stats.indirect.passes, IndirectSettings{}.rsmLights);
-  EXPECT_GT(f.stats.indirect.rsmTexels, 64 * 64);
+  const Frame all = render(scene, Indirect::Exact, 64, true, 0.0);
+  EXPECT_EQ(all.stats.indirect.rsmLights, IndirectSettings{}.rsmLights);
+  EXPECT_EQ(all.stats.indirect.candidates, candidates);
+  EXPECT_EQ(all.stats.indirect.passes, IndirectSettings{}.rsmLights);
+  EXPECT_EQ(all.stats.indirect.belowShare, 0);
+  EXPECT_GT(all.stats.indirect.rsmTexels, 64 * 64);
   // The room's spot carries about two thirds of the flux; the other lights' share is small.
+  EXPECT_GT(all.stats.indirect.fluxShare, 0.5);
+  EXPECT_LT(all.stats.indirect.fluxShare, 0.95);
+  const Frame f = render(scene, Indirect::Exact, 64);
+  EXPECT_EQ(f.stats.indirect.rsmLights, 1);
+  EXPECT_EQ(f.stats.indirect.passes, 1);
+  EXPECT_EQ(f.stats.indirect.belowShare, IndirectSettings{}.rsmLights - 1);
   EXPECT_GT(f.stats.indirect.fluxShare, 0.5);
-  EXPECT_LT(f.stats.indirect.fluxShare, 0.95);
+  EXPECT_LT(all.stats.indirect.fluxShare - f.stats.indirect.fluxShare, 3 * kRsmLeastShare);
   const Frame one = render(cornell(), Indirect::Exact, 64);
   EXPECT_EQ(one.stats.indirect.rsmLights, 1);
   EXPECT_DOUBLE_EQ(one.stats.indirect.fluxShare, 1.0);
+}
+
+// Where no light sends kRsmLeastShare of the view's flux (the room's 4,095 lights without its
+// spot: about 1/4,095 each), no map is made and nothing is added: the frame is the one
+// without indirect light, bit for bit.
+TEST(Indirect, NoMapWhereNoLightSendsTheLeastShare) {
+  Scene scene = cornell4096();
+  ASSERT_EQ(scene.lights[0].type, LightType::Spot);
+  scene.lights[0].intensity = 0.0f;  // the spot, cornellWith's first light
+  const Frame none = render(scene, Indirect::None, 64);
+  for (const Indirect mode : {Indirect::Exact, Indirect::Caches}) {
+    const Frame f = render(scene, mode, 64);
+    EXPECT_EQ(f.stats.indirect.rsmLights, 0);
+    EXPECT_EQ(f.stats.indirect.belowShare, IndirectSettings{}.rsmLights);
+    EXPECT_EQ(f.stats.indirect.caches, 0);
+    EXPECT_EQ(f.stats.indirect.passes, 0);
+    EXPECT_DOUBLE_EQ(f.stats.indirect.fluxShare, 0.0);
+    EXPECT_EQ(f.image.rgba, none.image.rgba);
+  }
 }
 
 // The map choice's measure (in float) reads, for a point or spot light of a range whose box
@@ -268,9 +297,10 @@ struct CacheError {
   double mean = 0.0, p99 = 0.0;
   long long nearClusters = 0;  // IndirectStats::nearClusters
 };
-CacheError cacheError(const Scene& scene, bool shL2, const char* name, int rsmSize = 64) {
-  const Frame exact = render(scene, Indirect::Exact, rsmSize);
-  const Frame caches = render(scene, Indirect::Caches, rsmSize, shL2);
+CacheError cacheError(const Scene& scene, bool shL2, const char* name, int rsmSize = 64,
+                      double leastShare = kRsmLeastShare) {
+  const Frame exact = render(scene, Indirect::Exact, rsmSize, true, leastShare);
+  const Frame caches = render(scene, Indirect::Caches, rsmSize, shL2, leastShare);
   // A pixel's total radiance, floored at 1% of the mean over the covered pixels: the edges of
   // the walls facing out of the room are black, and any error is infinite against 0 there.
   std::vector<double> diffs, totals;
@@ -314,7 +344,8 @@ TEST(Indirect, CachesMatchExact) {
   EXPECT_LT(l2.p99, 0.02);
   EXPECT_LT(l1.mean, 0.005);
   EXPECT_LT(l1.p99, 0.02);
-  const CacheError m = cacheError(cornellWith(65535), true, "65,536 lights");
+  // Four maps, the spot's and three whose lights send under kRsmLeastShare of the flux.
+  const CacheError m = cacheError(cornellWith(65535), true, "65,536 lights", 64, 0.0);
   EXPECT_LT(m.mean, 0.005);
   EXPECT_LT(m.p99, 0.02);
   // Texels a sixteenth the area: the near field reads clusters whole from 8 of their radii.

@@ -28,6 +28,31 @@ TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
   EXPECT_EQ(chooseRsmLights(lights, flux, 2, {3, 3}).lights, (std::vector<int>{3, 0}));
 }
 
+// A light sending under `leastShare` of every light's flux (points too) gets no map, whatever
+// its rank or the frame before's choice, and RsmChoice::belowShare counts the largest passed
+// over. A view that receives no flux at all keeps the ranking's lights.
+TEST(Indirect, TheChoicePassesOverLightsUnderTheLeastShare) {
+  std::vector<Light> lights(6);
+  for (Light& l : lights) l.type = LightType::Spot;
+  lights[5].type = LightType::Point;
+  const std::vector<double> flux = {10.0, 8.0, 3.0, 5.0, 2.0, 50.0};  // Σ 78
+  RsmChoice c = chooseRsmLights(lights, flux, 3, {}, 0.1);            // at least 7.8
+  EXPECT_EQ(c.lights, (std::vector<int>{0, 1}));
+  EXPECT_EQ(c.belowShare, 1);
+  c = chooseRsmLights(lights, flux, 3, {3, 1}, 0.1);
+  EXPECT_EQ(c.lights, (std::vector<int>{1, 0}));
+  EXPECT_EQ(c.belowShare, 1);
+  c = chooseRsmLights(lights, flux, 2, {0}, 0.2);  // at least 15.6: none
+  EXPECT_TRUE(c.lights.empty());
+  EXPECT_EQ(c.belowShare, 2);
+  c = chooseRsmLights(lights, flux, 3, {}, 0.0);
+  EXPECT_EQ(c.lights, (std::vector<int>{0, 1, 3}));
+  EXPECT_EQ(c.belowShare, 0);
+  c = chooseRsmLights(lights, std::vector<double>(6, 0.0), 2, {}, 0.1);
+  EXPECT_EQ(c.lights, (std::vector<int>{0, 1}));
+  EXPECT_EQ(c.belowShare, 0);
+}
+
 // The choice's measure against a double-precision sum of shading::irradiance at every sample,
 // where its grid over the samples meets its edges: a light of small range in a corner, a range
 // past the int's count of cells (read as every sample, as no range is), samples all at one
