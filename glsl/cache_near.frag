@@ -21,16 +21,14 @@ uniform sampler2D uEntryCentre;  // xyz, radius (0: a texel alone)
 uniform sampler2D uEntryNormal;
 // Σ flux, the map's near radius; negative where the cluster's texels do not share its facing
 uniform sampler2D uEntryFlux;
-// Per cascade's cell (stacked in z): its first entry and count, and its neighbours' count and
-// first in uNeighbours
+// Per cascade's cell (stacked in z): its neighbours' count and first in uNeighbours
 uniform sampler3D uGrid;
-// Per cell, the cells (x, y, z within the cascade) holding entries whose box lies within the
-// cascade's reach of the cell's box: those a pixel in the cell reads
+// Per cell, the cells holding entries whose box lies within the cascade's reach of the cell's
+// box, those a pixel in the cell reads, each as (x | y << 8 | z << 16 within the cascade, its
+// first entry, their count, how many come before those whose texels all lie on its plane)
 uniform sampler2D uNeighbours;
-// Per cell: the plane the most of its texels share (n, n·p), or 0, and how many of its
-// entries come before those whose texels all lie on it
-uniform sampler3D uPlanes;
-uniform sampler3D uPlaneBefore;
+// and the plane the most of its texels share (n, n·p), or 0
+uniform sampler2D uNeighbourPlanes;
 uniform vec3 uGridOrigin;
 uniform float uGridCell[8];
 uniform float uGridReach[8];   // per cascade, the farthest an entry's light reaches
@@ -95,19 +93,19 @@ vec3 cellLight(int base, int first, int last, vec3 x, vec3 n, float cascadeRadiu
 // Σ over the near entries of cascade k's grid: the irradiance times π.
 vec3 nearLight(int k, vec3 x, vec3 n) {
   ivec3 home = clamp(ivec3(floor((x - uGridOrigin) / uGridCell[k])), ivec3(0), uGridCells[k] - 1);
-  vec4 homeCell = texelFetch(uGrid, home + ivec3(0, 0, uGridFirstZ[k]), 0);
-  int neighbours = int(homeCell.b);
-  int firstNeighbour = int(homeCell.a);
+  vec2 homeCell = texelFetch(uGrid, home + ivec3(0, 0, uGridFirstZ[k]), 0).rg;
+  int neighbours = int(homeCell.x);
+  int firstNeighbour = int(homeCell.y);
   float cascadeRadius = kNearCells * uCell[k];
   int seen = 0;  // entries of the cells before this one
   float tolerance = kPlaneTolerance * uGridCell[k];
   float reach = uGridReach[k];
   vec3 sum = vec3(0.0);
   for (int i = 0; i < neighbours; ++i) {
-    ivec3 at = ivec3(texelFetch(uNeighbours, texelAt(firstNeighbour + i), 0).xyz);
-    ivec3 cell = at + ivec3(0, 0, uGridFirstZ[k]);
-    vec2 range = texelFetch(uGrid, cell, 0).rg;
-    int count = int(range.y);
+    vec4 listed = texelFetch(uNeighbours, texelAt(firstNeighbour + i), 0);
+    int cellBits = int(listed.x);
+    ivec3 at = ivec3(cellBits & 255, (cellBits >> 8) & 255, cellBits >> 16);
+    int count = int(listed.z);
     vec3 boxLo = uGridOrigin + vec3(at) * uGridCell[k];
     vec3 outside = max(max(boxLo - x, x - boxLo - uGridCell[k]), 0.0);
     vec3 centre = boxLo + 0.5 * uGridCell[k] - x;
@@ -119,13 +117,13 @@ vec3 nearLight(int k, vec3 x, vec3 n) {
     } else {
       // In or behind the plane of the cell's last entries' texels, x gets no light from
       // them: each sends its light to the side its normal faces.
-      vec4 plane = texelFetch(uPlanes, cell, 0);
+      vec4 plane = texelFetch(uNeighbourPlanes, texelAt(firstNeighbour + i), 0);
       if (plane.xyz != vec3(0.0) && dot(plane.xyz, x) - plane.w <= tolerance)
-        count = int(texelFetch(uPlaneBefore, cell, 0).r);
+        count = int(listed.w);
     }
     int first = max(uFirst[k] - seen, 0), last = min(uFirst[k] + uCount[k] - seen, count);
-    sum += cellLight(int(range.x), first, last, x, n, cascadeRadius);
-    seen += int(range.y);
+    sum += cellLight(int(listed.y), first, last, x, n, cascadeRadius);
+    seen += int(listed.z);
   }
   return sum;
 }

@@ -152,9 +152,9 @@ std::vector<long long> windowSums(const std::vector<long long>& cost, glm::ivec3
 
 // Per cell of a grid of `cells` cells of edge `cell`: the cells holding entries (`ranges`)
 // whose box lies within `reach` of its own (all within `m` cells of it on each axis), appended to
-// `out` in the cells' order as (x, y, z, 0). Returns per cell its first place in `out` and their
-// count: a pixel in the cell reads those cells only, instead of every cell of the window around it,
-// most of them empty.
+// `out` in the cells' order as (x, y, z, 0) (listedCells makes them the shader's items). Returns
+// per cell its first place in `out` and their count: a pixel in the cell reads those cells only,
+// instead of every cell of the window around it, most of them empty.
 std::vector<glm::vec2> neighbourLists(const std::vector<glm::vec2>& ranges, glm::ivec3 cells,
                                       float cell, float reach, int m, std::vector<glm::vec4>& out) {
   const auto index = [&](glm::ivec3 c) {
@@ -198,6 +198,22 @@ std::vector<glm::vec2> neighbourLists(const std::vector<glm::vec2>& ranges, glm:
     forEachHome(s, [&](std::size_t h) { out[next[h]++] = glm::vec4(glm::vec3(s), 0.0f); });
   });
   return lists;
+}
+
+// The items of a cascade's neighbour lists, out[from, end) as neighbourLists left them: each
+// listed cell's (x | y << 8 | z << 16, first entry, count, count before its plane's entries)
+// per `ranges` (first entries counted over every cascade) and `before`, and its plane
+// appended to `planesOut`: the near field reads a listed cell in two texels.
+void listedCells(const std::vector<glm::vec2>& ranges, const std::vector<glm::vec4>& planes,
+                 const std::vector<float>& before, glm::ivec3 cells, std::size_t from,
+                 std::vector<glm::vec4>& out, std::vector<glm::vec4>& planesOut) {
+  static_assert(kNearGridCells <= 256, "a cell's coordinates are packed in 8 bits each");
+  for (std::size_t i = from; i < out.size(); ++i) {
+    const glm::ivec3 s(out[i]);
+    const std::size_t c = std::size_t((s.z * cells.y + s.y) * cells.x + s.x);
+    out[i] = glm::vec4(float(s.x | s.y << 8 | s.z << 16), ranges[c].x, ranges[c].y, before[c]);
+    planesOut.push_back(planes[c]);
+  }
 }
 
 long long largest(const std::vector<long long>& v) {
@@ -302,17 +318,12 @@ std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
   return planes;
 }
 
-// Per cascade's cell, stacked in z in volumes of `size`: its first entry and their count, then
-// its neighbourLists' count and first (grid_), and cellPlanes (planes_, planeBefore_).
-void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
-                            const std::vector<std::vector<glm::vec2>>& lists,
-                            const std::vector<std::vector<glm::vec4>>& planes,
-                            const std::vector<std::vector<float>>& before) {
-  std::vector<glm::vec4> volume(std::size_t(size.x) * std::size_t(size.y) * std::size_t(size.z),
-                                glm::vec4(0.0f)),
-      planeVolume(volume.size(), glm::vec4(0.0f));
-  std::vector<float> beforeVolume(volume.size(), 0.0f);
-  for (std::size_t k = 0; k < ranges.size(); ++k) {
+// Per cascade's cell, stacked in z in a volume of `size`: its neighbourLists' count and first
+// (grid_).
+void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& lists) {
+  std::vector<glm::vec2> volume(std::size_t(size.x) * std::size_t(size.y) * std::size_t(size.z),
+                                glm::vec2(0.0f));
+  for (std::size_t k = 0; k < lists.size(); ++k) {
     const glm::ivec3 cells = cells_[k];
     for (int z = 0; z < cells.z; ++z)
       for (int y = 0; y < cells.y; ++y)
@@ -322,14 +333,10 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
                   std::size_t(size.x) +
               std::size_t(x);
           const std::size_t c = std::size_t((z * cells.y + y) * cells.x + x);
-          volume[at] = glm::vec4(ranges[k][c], lists[k][c].y, lists[k][c].x);
-          planeVolume[at] = planes[k][c];
-          beforeVolume[at] = before[k][c];
+          volume[at] = glm::vec2(lists[k][c].y, lists[k][c].x);
         }
   }
-  upload3d(grid_, size, GL_RGBA32F, GL_RGBA, glm::value_ptr(volume[0]));
-  upload3d(planes_, size, GL_RGBA32F, GL_RGBA, glm::value_ptr(planeVolume[0]));
-  upload3d(planeBefore_, size, GL_R32F, GL_RED, beforeVolume.data());
+  upload3d(grid_, size, GL_RG32F, GL_RG, glm::value_ptr(volume[0]));
 }
 
 // The entries of every cascade, in their cells' order, then the texels of the clusters as
@@ -385,11 +392,8 @@ void NearField::upload(const CacheGrid& grid) {
   origin_ = lo;
   clusterEntries_ = 0;
   std::vector<Entry> ordered;                  // every cascade's entries in its cells' order
-  std::vector<std::vector<glm::vec2>> ranges;  // per cascade, per cell: first entry, count
-  std::vector<std::vector<glm::vec4>> planes;  // per cascade, per cell: cellPlanes
-  std::vector<std::vector<float>> before;      // and the entries before its plane's
   std::vector<std::vector<glm::vec2>> lists;   // per cascade, per cell: neighbourLists
-  std::vector<glm::vec4> neighbours;           // every cascade's neighbourLists
+  std::vector<glm::vec4> neighbours, planes;   // every cascade's listedCells
   cell_.clear(), reach_.clear(), spread_.clear(), cells_.clear(), firstZ_.clear();
   std::vector<std::vector<int>> first, count;  // per cascade, per pass
   glm::ivec3 size(1, 1, 0);
@@ -406,21 +410,23 @@ void NearField::upload(const CacheGrid& grid) {
     glm::ivec3 cells;
     std::vector<int> list;
     std::vector<glm::vec2> r = binCascade(points, lo, hi, reach, list, cell, cells);
-    before.emplace_back();
-    planes.push_back(cellPlanes(entries, list, r, kPlaneTolerance * cell, before.back()));
+    std::vector<float> before;
+    const std::vector<glm::vec4> cellPlane =
+        cellPlanes(entries, list, r, kPlaneTolerance * cell, before);
     for (const Entry& e : entries) clusterEntries_ += e.centreRadius.w > 0.0f;
     first.emplace_back(), count.emplace_back();
     // A pixel's cells lie within m of its own on each axis.
     const int m = int(std::ceil(reach / cell)) + 1;
     cascadePasses(entries, list, r, cells, m, first.back(), count.back());
+    const std::size_t listed = neighbours.size();
     lists.push_back(neighbourLists(r, cells, cell, reach, m, neighbours));
     for (glm::vec2& range : r) range.x += float(ordered.size());
+    listedCells(r, cellPlane, before, cells, listed, neighbours, planes);
     for (int i : list) ordered.push_back(entries[std::size_t(i)]);
     cell_.push_back(cell), reach_.push_back(reach), spread_.push_back(spread);
     cells_.push_back(cells);
     firstZ_.push_back(size.z);
     size = glm::ivec3(std::max(size.x, cells.x), std::max(size.y, cells.y), size.z + cells.z);
-    ranges.push_back(std::move(r));
   }
   std::size_t passes = 0;
   for (const std::vector<int>& f : first) passes = std::max(passes, f.size());
@@ -433,7 +439,8 @@ void NearField::upload(const CacheGrid& grid) {
     }
   uploadEntries(ordered);
   upload2d(neighbours_, neighbours);
-  uploadGrids(size, ranges, lists, planes, before);
+  upload2d(neighbourPlanes_, planes);
+  uploadGrids(size, lists);
 }
 
 int NearField::draw(const GBuffer& camera, const PixelClasses& classes) {
@@ -445,9 +452,8 @@ int NearField::draw(const GBuffer& camera, const PixelClasses& classes) {
   bindSampler(p, "uEntryNormal", GL_TEXTURE_2D, normals_.id(), 4);
   bindSampler(p, "uEntryFlux", GL_TEXTURE_2D, fluxes_.id(), 5);
   bindSampler(p, "uGrid", GL_TEXTURE_3D, grid_.id(), 6);
-  bindSampler(p, "uPlanes", GL_TEXTURE_3D, planes_.id(), 7);
-  bindSampler(p, "uPlaneBefore", GL_TEXTURE_3D, planeBefore_.id(), 9);
-  bindSampler(p, "uNeighbours", GL_TEXTURE_2D, neighbours_.id(), 8);
+  bindSampler(p, "uNeighbours", GL_TEXTURE_2D, neighbours_.id(), 7);
+  bindSampler(p, "uNeighbourPlanes", GL_TEXTURE_2D, neighbourPlanes_.id(), 8);
   setCascadeUniforms(p, cascades_);
   const int k = std::min(cascades_.cascades, int(cell_.size()));
   glUniform3fv(p.uniform("uGridOrigin"), 1, glm::value_ptr(origin_));

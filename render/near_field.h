@@ -102,9 +102,9 @@ class NearField {
   // Per pass, per cascade: its first entry and the count (in the cascade's cells' order).
   std::vector<std::vector<int>> passFirst_, passCount_;
   // Per cascade, its entries ordered by the cascade's grid cell (the entry textures); per
-  // cell, its range of them, its neighbour list's, its plane and the count of its entries
-  // before those on the plane (cellPlanes); the neighbour lists.
-  gl::Texture centres_, normals_, fluxes_, grid_, planes_, planeBefore_, neighbours_;
+  // cell, its neighbour list's range (grid_); the lists' items, each a listed cell's
+  // coordinates, range of entries and count before its plane's, and its plane (cellPlanes).
+  gl::Texture centres_, normals_, fluxes_, grid_, neighbours_, neighbourPlanes_;
   std::vector<Entry> cascadeEntries(float cell) const;
   static void cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
                             const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
@@ -117,10 +117,7 @@ class NearField {
   std::vector<glm::vec4> cellPlanes(const std::vector<Entry>& entries, std::vector<int>& list,
                                     const std::vector<glm::vec2>& ranges, float tolerance,
                                     std::vector<float>& before) const;
-  void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& ranges,
-                   const std::vector<std::vector<glm::vec2>>& lists,
-                   const std::vector<std::vector<glm::vec4>>& planes,
-                   const std::vector<std::vector<float>>& before);
+  void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& lists);
   void uploadEntries(const std::vector<Entry>& ordered);
 };
 
