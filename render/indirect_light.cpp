@@ -187,14 +187,16 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   camera.read(GBuffer::kNormal, normal_);
   glBindVertexArray(emptyVao_.id());
   const RsmSamples samples = sampleRsmChoice(position_, normal_, lights.size());
-  const std::vector<double> flux = measureLightFlux(lights, samples);
+  const std::vector<char> due = fluxHistory_.due(lights);
+  const std::vector<double> flux = measureLightFlux(lights, samples, &due);
+  const std::vector<double>& means = fluxHistory_.add(lights, flux, &due);
   std::vector<int> previous;
   for (const Map& m : maps_) previous.push_back(m.index);
-  const RsmChoice choice = chooseRsmLights(lights, fluxHistory_.add(lights, flux),
-                                           settings.rsmLights, previous, settings.rsmLeastShare);
+  const RsmChoice choice =
+      chooseRsmLights(lights, means, settings.rsmLights, previous, settings.rsmLeastShare);
   stats.candidates = choice.candidates;
   stats.belowShare = choice.belowShare;
-  stats.fluxShare = fluxShare(choice.lights, flux);  // of this frame's flux, not the history's
+  stats.fluxShare = fluxShare(choice.lights, means);
   stats.chooseMs = msSince(start);
   start = Clock::now();
   const long long before = mapsRendered_;

@@ -48,7 +48,7 @@ struct IndirectStats {
   int candidates = 0;       // spot and directional lights
   int belowShare = 0;       // lights passed over for their small share (RsmChoice::belowShare)
   long long rsmTexels = 0;  // map texels that reflect flux, over all maps
-  double fluxShare = 1.0;   // the chosen lights' share of this frame's flux (fluxShare)
+  double fluxShare = 1.0;   // the chosen lights' share of the means' flux (fluxShare)
   int passes = 0;           // gather passes
   double chooseMs = 0.0;    // reading the G-buffer back and choosing the lights
   double rsmMs = 0.0;       // rendering the maps and their flux

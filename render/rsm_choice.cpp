@@ -72,18 +72,33 @@ double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux
   return total > 0.0 ? sum / total : 1.0;
 }
 
+std::vector<char> RsmFluxHistory::due(const std::vector<Light>& lights) const {
+  std::vector<char> out(lights.size(), 1);
+  if (lights.size() != lights_.size()) return out;
+  const std::size_t turn = std::size_t(frames_ % kRsmChoiceStride);
+  for (std::size_t i = 0; i < lights.size(); ++i)
+    out[i] = i % kRsmChoiceStride == turn || weight_[i] == 0.0 || !sameLight(lights[i], lights_[i]);
+  return out;
+}
+
 const std::vector<double>& RsmFluxHistory::add(const std::vector<Light>& lights,
-                                               const std::vector<double>& flux) {
+                                               const std::vector<double>& flux,
+                                               const std::vector<char>* measured) {
   if (lights.size() != lights_.size() || flux.size() != sum_.size()) {
     lights_ = lights;
     sum_.assign(flux.size(), 0.0);
     weight_.assign(flux.size(), 0.0);
+    frames_ = 0;
   }
+  ++frames_;
   mean_.resize(flux.size());
+  const double memory =
+      measured ? std::pow(kRsmChoiceMemory, double(kRsmChoiceStride)) : kRsmChoiceMemory;
   for (std::size_t i = 0; i < sum_.size(); ++i) {
     const bool same = sameLight(lights[i], lights_[i]);
+    if (same && measured && !(*measured)[i]) continue;  // keeps its mean
     if (!same) lights_[i] = lights[i];
-    const double keep = same ? kRsmChoiceMemory : 0.0;
+    const double keep = same ? memory : 0.0;
     sum_[i] = keep * sum_[i] + flux[i];
     weight_[i] = keep * weight_[i] + 1.0;
     mean_[i] = sum_[i] / weight_[i];
@@ -282,7 +297,8 @@ double unitFlux(const Light& light, const SampleArrays& a, const SampleGrid& gri
 
 }  // namespace
 
-std::vector<double> measureLightFlux(const std::vector<Light>& lights, const RsmSamples& samples) {
+std::vector<double> measureLightFlux(const std::vector<Light>& lights, const RsmSamples& samples,
+                                     const std::vector<char>* which) {
   std::vector<double> flux(lights.size(), 0.0);
   const SampleGrid grid(samples);
   const SampleArrays arrays(samples);
@@ -290,6 +306,7 @@ std::vector<double> measureLightFlux(const std::vector<Light>& lights, const Rsm
       sharesOf(lights.size(), 4096), lights.size(), [&](int, std::size_t from, std::size_t to) {
         std::vector<float> scratch(padded(arrays.size()), 0.0f);
         for (std::size_t i = from; i < to; ++i) {
+          if (which && !(*which)[i]) continue;
           const glm::dvec3 radiant = glm::dvec3(lights[i].colour) * double(lights[i].intensity);
           flux[i] = shading::luminance(radiant) * unitFlux(lights[i], arrays, grid, scratch);
         }

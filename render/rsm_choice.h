@@ -65,22 +65,37 @@ double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux
 // mean starts again from its frame's flux when the light changes (moves, or changes colour,
 // intensity, range or cone), and every light's when their count does: a light that changes every
 // frame is ranked by its latest.
+// A frame need not measure every light (due): each light is measured every kRsmChoiceStride
+// frames in turn, and at once when it changes or has no mean; a light measured in turn
+// weighs its mean kRsmChoiceMemory^kRsmChoiceStride, so the mean still holds about the last
+// ten frames' views, and one not measured keeps its mean.
 class RsmFluxHistory {
  public:
-  // Adds a frame's `flux` (per light of `lights`, scene order) and returns the means.
-  const std::vector<double>& add(const std::vector<Light>& lights, const std::vector<double>& flux);
+  // Per light of `lights`, whether this frame measures it (1) or keeps its mean (0).
+  std::vector<char> due(const std::vector<Light>& lights) const;
+  // Adds a frame's `flux` (per light of `lights`, scene order), of the lights `measured` says
+  // (from due; null: every light, each frame's flux weighed kRsmChoiceMemory^age), and
+  // returns the means.
+  const std::vector<double>& add(const std::vector<Light>& lights, const std::vector<double>& flux,
+                                 const std::vector<char>* measured = nullptr);
 
  private:
   std::vector<Light> lights_;
   std::vector<double> sum_, weight_, mean_;
+  long long frames_ = 0;  // added since the lights' count last changed
 };
 // Weight of the frame before against this one's: the mean holds about the last ten frames.
 inline constexpr double kRsmChoiceMemory = 0.9;
+// A light measured in turn every this many frames: a frame of a playback evaluates a quarter
+// of lights × samples, and a light's mean still follows the last ten or so views.
+inline constexpr int kRsmChoiceStride = 4;
 
 // Per light of `lights` (scene order): Σ over `samples` of the luminance of its irradiance
-// (shading::irradiance's, in float, as the shaders evaluate it). A point or spot light of a
-// range whose box holds under an eighth of the samples, binned in a grid over them, reads the
-// samples of the cells its box overlaps only; the others read every sample.
-std::vector<double> measureLightFlux(const std::vector<Light>& lights, const RsmSamples& samples);
+// (shading::irradiance's, in float, as the shaders evaluate it); 0 for a light `which` (if
+// given) leaves out. A point or spot light of a range whose box holds under an eighth of the
+// samples, binned in a grid over them, reads the samples of the cells its box overlaps only;
+// the others read every sample.
+std::vector<double> measureLightFlux(const std::vector<Light>& lights, const RsmSamples& samples,
+                                     const std::vector<char>* which = nullptr);
 
 }  // namespace manylight

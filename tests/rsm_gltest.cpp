@@ -131,6 +131,39 @@ TEST(Indirect, TheChoiceRanksByTheFluxOfTheLastFrames) {
   EXPECT_DOUBLE_EQ(fluxShare({1}, {0.0, 0.0, 0.0}), 1.0);
 }
 
+// Over a playback (RsmFluxHistory::due) a light is measured every kRsmChoiceStride frames in
+// turn, and at once when it changes; one not measured keeps its mean, one measured in turn
+// weighs its mean kRsmChoiceMemory^kRsmChoiceStride; measureLightFlux leaves the others out.
+TEST(Indirect, TheChoiceMeasuresTheLightsInTurn) {
+  std::vector<Light> lights(6);
+  for (Light& l : lights) l.type = LightType::Spot;
+  RsmFluxHistory history;
+  std::vector<char> due = history.due(lights);
+  EXPECT_EQ(due, std::vector<char>(6, 1));  // no means yet
+  history.add(lights, {1.0, 2.0, 3.0, 4.0, 5.0, 6.0}, &due);
+  EXPECT_EQ(history.due(lights), (std::vector<char>{0, 1, 0, 0, 0, 1}));
+  lights[3].intensity = 2.0f;
+  due = history.due(lights);
+  EXPECT_EQ(due, (std::vector<char>{0, 1, 0, 1, 0, 1}));
+  const std::vector<double> means = history.add(lights, {0.0, 4.0, 0.0, 8.0, 0.0, 2.0}, &due);
+  const double k = std::pow(kRsmChoiceMemory, double(kRsmChoiceStride));
+  EXPECT_DOUBLE_EQ(means[0], 1.0);
+  EXPECT_DOUBLE_EQ(means[1], (2.0 * k + 4.0) / (k + 1.0));
+  EXPECT_DOUBLE_EQ(means[2], 3.0);
+  EXPECT_DOUBLE_EQ(means[3], 8.0);  // changed: starts again
+  EXPECT_DOUBLE_EQ(means[5], (6.0 * k + 2.0) / (k + 1.0));
+  EXPECT_EQ(history.due(lights), (std::vector<char>{0, 0, 1, 0, 0, 0}));  // the next turn
+  RsmSamples below;
+  below.position.assign(2, glm::vec3(0.0f, 0.0f, -1.0f));
+  below.normal.assign(2, glm::vec3(0.0f, 0.0f, 1.0f));
+  const std::vector<double> all = measureLightFlux(lights, below);
+  const std::vector<double> some = measureLightFlux(lights, below, &due);
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    EXPECT_GT(all[i], 0.0);
+    EXPECT_EQ(some[i], due[i] ? all[i] : 0.0) << "light " << i;
+  }
+}
+
 // An 8 × 8 map: the lower-left block flat on z = 0 with equal flux, the lower-right one
 // with its right half facing +x, the top two reflecting nothing but one texel.
 TEST(Indirect, ClustersHoldTheirTexels) {
