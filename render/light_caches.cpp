@@ -295,25 +295,31 @@ void LightCaches::upload(const CacheGrid& grid, CacheAllocation& a, bool shL2) {
   for (std::size_t node : a.nodes) a.cav[node] = float(slot[std::size_t(a.cav[node])]);
   const int n = grid.nodesPerAxis();
   const glm::ivec3 size(n, n, n * grid.cascades);
-  // The slices holding nodes now, and with the last upload's, those that changed.
+  // Per cascade, the slices holding nodes now, and with the last upload's, those that changed
+  // (a range per cascade: the slices between two cascades' nodes hold none).
   const std::size_t slice = std::size_t(n) * std::size_t(n);
-  glm::ivec2 slices(size.z, -1);
-  for (std::size_t node : a.nodes)
-    slices =
-        glm::ivec2(std::min(slices.x, int(node / slice)), std::max(slices.y, int(node / slice)));
-  const glm::ivec2 changed(std::min(slices.x, cavSlices_.x), std::max(slices.y, cavSlices_.y));
-  cavSlices_ = slices;
+  std::vector<glm::ivec2> slices(std::size_t(grid.cascades), glm::ivec2(size.z, -1));
+  for (std::size_t node : a.nodes) {
+    const int z = int(node / slice);
+    glm::ivec2& s = slices[std::size_t(z / n)];
+    s = glm::ivec2(std::min(s.x, z), std::max(s.y, z));
+  }
   glBindTexture(GL_TEXTURE_3D, cav_.id());
   if (size == cavSize_) {  // into the texture's memory, not new memory
-    if (changed.y >= changed.x)
-      glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, changed.x, n, n, changed.y - changed.x + 1, GL_RED,
-                      GL_FLOAT, a.cav.data() + std::size_t(changed.x) * slice);
+    for (std::size_t k = 0; k < slices.size(); ++k) {
+      const glm::ivec2 last = k < cavSlices_.size() ? cavSlices_[k] : glm::ivec2(size.z, -1);
+      const glm::ivec2 changed(std::min(slices[k].x, last.x), std::max(slices[k].y, last.y));
+      if (changed.y >= changed.x)
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, changed.x, n, n, changed.y - changed.x + 1, GL_RED,
+                        GL_FLOAT, a.cav.data() + std::size_t(changed.x) * slice);
+    }
   } else {
     glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n, n, size.z, 0, GL_RED, GL_FLOAT, a.cav.data());
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     cavSize_ = size;
   }
+  cavSlices_ = std::move(slices);
   glBindTexture(GL_TEXTURE_3D, 0);
   width_ = kCacheTextureWidth;
   height_ = std::max(1, (count_ + width_ - 1) / width_);
