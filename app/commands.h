@@ -118,8 +118,8 @@ struct MethodArgs {
   Method parsed() const { return parseMethod(method); }
   // The indirect light these options ask for.
   IndirectSettings indirectSettings() const {
-    return {parseIndirect(indirect), rsmLights, rsmSize, cacheBasis == "sh2", cacheCell,
-            rsmLeastShare};
+    return {parseIndirect(indirect), rsmLights, rsmSize,
+            cacheBasis == "sh2",     cacheCell, rsmLeastShare};
   }
   // The lightcuts settings these options give (trees aside).
   LightcutsSettings lightcuts() const;

@@ -182,7 +182,7 @@ class LightCaches {
   // previous_: per kept cache, its slot the frame before
   // links_: CacheAllocation::next, and the bin (normals_.w) beside it
   gl::Texture cav_, positions_, normals_, links_, previous_;
-  glm::ivec3 cavSize_{0};        // cav_'s texels a side, and in z for every cascade
+  glm::ivec3 cavSize_{0};  // cav_'s texels a side, and in z for every cascade
   // Per cascade, the first and last z slices holding nodes at the last upload ({0, −1}: none)
   std::vector<glm::ivec2> cavSlices_;
   std::vector<Layer> layers_;

@@ -391,9 +391,9 @@ void NearField::upload(const CacheGrid& grid) {
   for (const Entry& c : clusters_) mapRadius = std::max(mapRadius, c.mapRadius());
   origin_ = lo;
   clusterEntries_ = 0;
-  std::vector<Entry> ordered;                  // every cascade's entries in its cells' order
-  std::vector<std::vector<glm::vec2>> lists;   // per cascade, per cell: neighbourLists
-  std::vector<glm::vec4> neighbours, planes;   // every cascade's listedCells
+  std::vector<Entry> ordered;                 // every cascade's entries in its cells' order
+  std::vector<std::vector<glm::vec2>> lists;  // per cascade, per cell: neighbourLists
+  std::vector<glm::vec4> neighbours, planes;  // every cascade's listedCells
   cell_.clear(), reach_.clear(), spread_.clear(), cells_.clear(), firstZ_.clear();
   std::vector<std::vector<int>> first, count;  // per cascade, per pass
   glm::ivec3 size(1, 1, 0);
