@@ -175,20 +175,19 @@ int IndirectLight::gatherLayers(std::vector<int>& layers) {
   return passes;
 }
 
-IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
-                                   const GeometryPass& geometry, const GBuffer& camera,
-                                   const View& view, const std::vector<Light>& lights,
-                                   const IndirectSettings& settings) {
-  IndirectStats stats;
-  if (settings.mode == Indirect::None) return stats;
+RsmChoice IndirectLight::choose(const GBuffer& camera, const std::vector<Light>& lights,
+                                 const IndirectSettings& settings, IndirectStats& stats) {
   glFinish();  // the direct light's passes are not the choice's time
-  auto start = Clock::now();
+  const auto start = Clock::now();
   camera.read(GBuffer::kPosition, position_);
   camera.read(GBuffer::kNormal, normal_);
   glBindVertexArray(emptyVao_.id());
   const RsmSamples samples = sampleRsmChoice(position_, normal_, lights.size());
   const std::vector<char> due = fluxHistory_.due(lights);
-  const std::vector<double> flux = measureLightFlux(lights, samples, &due);
+  std::vector<double> flux = measureLightFlux(lights, samples, &due);
+  // Per sample: a frame's sums and another's, whose samples differ in number, weigh alike.
+  if (!samples.position.empty())
+    for (double& f : flux) f /= double(samples.position.size());
   const std::vector<double>& means = fluxHistory_.add(lights, flux, &due);
   std::vector<int> previous;
   for (const Map& m : maps_) previous.push_back(m.index);
@@ -198,7 +197,17 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   stats.belowShare = choice.belowShare;
   stats.fluxShare = fluxShare(choice.lights, means);
   stats.chooseMs = msSince(start);
-  start = Clock::now();
+  return choice;
+}
+
+IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
+                                   const GeometryPass& geometry, const GBuffer& camera,
+                                   const View& view, const std::vector<Light>& lights,
+                                   const IndirectSettings& settings) {
+  IndirectStats stats;
+  if (settings.mode == Indirect::None) return stats;
+  const RsmChoice choice = choose(camera, lights, settings, stats);
+  auto start = Clock::now();
   const long long before = mapsRendered_;
   const bool changed = updateMaps(scene, gpu, geometry, lights, choice);
   stats.mapsKept = chosen_ && !changed;

@@ -101,6 +101,10 @@ class IndirectLight {
     float nearRadius = 0.0f;
     long long texels = 0;  // that reflect flux
   };
+  // Reads the camera's G-buffer back and chooses the frame's lights (rsm_choice.h); sets the
+  // choice's part of `stats`.
+  RsmChoice choose(const GBuffer& camera, const std::vector<Light>& lights,
+                   const IndirectSettings& settings, IndirectStats& stats);
   // Makes maps_ those of `choice`, rendering those the last frame had not; returns whether the
   // maps changed.
   bool updateMaps(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,

@@ -183,7 +183,8 @@ class LightCaches {
   // links_: CacheAllocation::next, and the bin (normals_.w) beside it
   gl::Texture cav_, positions_, normals_, links_, previous_;
   glm::ivec3 cavSize_{0};  // cav_'s texels a side, and in z for every cascade
-  // Per cascade, the first and last z slices holding nodes at the last upload ({0, −1}: none)
+  // Per cascade, the first and last z slices holding nodes at the last upload (last < first:
+  // none)
   std::vector<glm::ivec2> cavSlices_;
   std::vector<Layer> layers_;
   Targets scratch_;  // a layer's kept caches are copied here, then the two trade places

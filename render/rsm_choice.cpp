@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "base/parallel.h"
@@ -32,7 +33,10 @@ RsmSamples sampleRsmChoice(const std::vector<float>& position, const std::vector
 RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<double>& flux,
                           int count, const std::vector<int>& previous, double leastShare) {
   RsmChoice choice;
-  const double least = leastShare * std::accumulate(flux.begin(), flux.end(), 0.0);
+  // With no least share every light passes, whatever the sum (a NaN in it too).
+  const double least = leastShare > 0.0
+                           ? leastShare * std::accumulate(flux.begin(), flux.end(), 0.0)
+                           : -std::numeric_limits<double>::infinity();
   const auto enough = [&](int i) { return flux[std::size_t(i)] >= least; };
   std::vector<int> candidates;
   for (std::size_t i = 0; i < lights.size(); ++i) {
@@ -49,8 +53,8 @@ RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<do
   for (int i : previous) {
     const bool candidate =
         i >= 0 && std::size_t(i) < lights.size() && lights[std::size_t(i)].type != LightType::Point;
-    if (candidate && choice.lights.size() < k && flux[std::size_t(i)] > 0.0 && enough(i) &&
-        flux[std::size_t(i)] >= kRsmChoiceKeep * weakest &&
+    if (candidate && choice.lights.size() < k && flux[std::size_t(i)] > 0.0 &&
+        flux[std::size_t(i)] >= kRsmChoiceKeep * std::max(weakest, least) &&
         std::find(choice.lights.begin(), choice.lights.end(), i) == choice.lights.end())
       choice.lights.push_back(i);
   }
@@ -77,7 +81,7 @@ std::vector<char> RsmFluxHistory::due(const std::vector<Light>& lights) const {
   if (lights.size() != lights_.size()) return out;
   const std::size_t turn = std::size_t(frames_ % kRsmChoiceStride);
   for (std::size_t i = 0; i < lights.size(); ++i)
-    out[i] = i % kRsmChoiceStride == turn || weight_[i] == 0.0 || !sameLight(lights[i], lights_[i]);
+    out[i] = i % kRsmChoiceStride == turn || !sameLight(lights[i], lights_[i]);
   return out;
 }
 

@@ -38,7 +38,10 @@ RsmSamples sampleRsmChoice(const std::vector<float>& position, const std::vector
 // their flux is at least kRsmChoiceKeep × the weakest of the `count` largest: a playback
 // whose view changes a little keeps its maps and caches, instead of trading lights whose
 // flux differs by the sampling's noise. A light whose flux is under `leastShare` × Σ `flux`
-// (every light's, points too) gets no map, whatever its rank (kRsmLeastShare).
+// (every light's, points too) gets no map, whatever its rank (kRsmLeastShare), but a light of
+// `previous` keeps its map down to kRsmChoiceKeep × that, so that a light about the least
+// share does not gain and lose its map from frame to frame. Where Σ `flux` is 0 (a view the
+// lights do not reach) every light has the share.
 RsmChoice chooseRsmLights(const std::vector<Light>& lights, const std::vector<double>& flux,
                           int count, const std::vector<int>& previous = {},
                           double leastShare = 0.0);
@@ -50,10 +53,10 @@ inline constexpr double kRsmChoiceKeep = 0.5;
 // carry 0.002% of the view's light (the generated room: docs/indirect.md).
 inline constexpr double kRsmLeastShare = 1e-3;
 
-// The share of Σ `flux` that the `chosen` lights have; 1 where the sum is 0. Of a frame's
-// measureLightFlux, it is the chosen lights' share of the direct flux the view receives (of
-// Σ over the sampled pixels of every light's irradiance, luminance), `--stats`'s
-// rsm_flux_share.
+// The share of Σ `flux` that the `chosen` lights have; 1 where the sum is 0. Of the means
+// RsmFluxHistory holds (a single frame's measureLightFlux in a single render), it is the
+// chosen lights' share of the direct flux the view receives (of Σ over the sampled pixels of
+// every light's irradiance, luminance), `--stats`'s rsm_flux_share.
 double fluxShare(const std::vector<int>& chosen, const std::vector<double>& flux);
 
 // The flux the frames so far measured, frame after frame of one renderer, as a weighted mean

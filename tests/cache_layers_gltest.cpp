@@ -129,5 +129,33 @@ TEST(Indirect, MapsPastTheLayersShareThem) {
   EXPECT_LE(largestDifference(kept, shrunk), 1e-6);
 }
 
+// In the room of 4,096 lights (no light but the spot sends kRsmLeastShare of the flux) the
+// spot goes dark, then lit, then dark again: no map, then the spot's alone, its caches
+// allocated anew, then none again; each frame comes out as a fresh renderer makes it.
+TEST(Indirect, MapsComeAndGoWithTheLeastShare) {
+  Scene room = cornellWith(4095);
+  ASSERT_EQ(room.lights[0].type, LightType::Spot);
+  const float spot = room.lights[0].intensity;
+  RenderRequest request = everyMap();
+  request.indirect.rsmLights = 4;
+  PreparedRender p(room, request);
+  const View view = makeView(p.camera, kWidth, kHeight);
+  Image frames[3];
+  for (int f = 0; f < 3; ++f) {
+    room.lights[0].intensity = f == 1 ? spot : 0.0f;
+    p.renderer->moveLights(room.lights, {0}, BakeOptions{});
+    FrameStats stats;
+    frames[f] = p.renderer->render(view, p.settings, &stats);
+    EXPECT_EQ(stats.indirect.rsmLights, f == 1 ? 1 : 0) << "frame " << f;
+    EXPECT_EQ(stats.indirect.mapsRendered, f == 1 ? 1 : 0) << "frame " << f;
+    EXPECT_EQ(stats.indirect.caches > 0, f == 1) << "frame " << f;
+    PreparedRender fresh(room, request);
+    const Image afresh = fresh.renderer->render(view, fresh.settings, nullptr);
+    EXPECT_LE(largestDifference(frames[f], afresh), 1e-5) << "frame " << f;
+  }
+  EXPECT_EQ(frames[2].rgba, frames[0].rgba);
+  EXPECT_GT(largestDifference(frames[1], frames[0]), 1e-3);
+}
+
 }  // namespace
 }  // namespace manylight::testing

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "render/light_caches.h"
 #include "render/rsm_choice.h"
@@ -29,8 +30,9 @@ TEST(Indirect, TheChoiceKeepsTheLightsOfTheFrameBefore) {
 }
 
 // A light sending under `leastShare` of every light's flux (points too) gets no map, whatever
-// its rank or the frame before's choice, and RsmChoice::belowShare counts the largest passed
-// over. A view that receives no flux at all keeps the ranking's lights.
+// its rank, unless the frame before's choice had it and it sends at least kRsmChoiceKeep ×
+// that; RsmChoice::belowShare counts the largest passed over. A view that receives no flux at
+// all keeps the ranking's lights, and a NaN flux passes over every light but at share 0.
 TEST(Indirect, TheChoicePassesOverLightsUnderTheLeastShare) {
   std::vector<Light> lights(6);
   for (Light& l : lights) l.type = LightType::Spot;
@@ -39,18 +41,29 @@ TEST(Indirect, TheChoicePassesOverLightsUnderTheLeastShare) {
   RsmChoice c = chooseRsmLights(lights, flux, 3, {}, 0.1);            // at least 7.8
   EXPECT_EQ(c.lights, (std::vector<int>{0, 1}));
   EXPECT_EQ(c.belowShare, 1);
+  // A light of the frame before keeps its map down to kRsmChoiceKeep × the least share (3.9).
   c = chooseRsmLights(lights, flux, 3, {3, 1}, 0.1);
+  EXPECT_EQ(c.lights, (std::vector<int>{3, 1, 0}));
+  EXPECT_EQ(c.belowShare, 0);
+  c = chooseRsmLights(lights, flux, 3, {2, 1}, 0.1);
   EXPECT_EQ(c.lights, (std::vector<int>{1, 0}));
   EXPECT_EQ(c.belowShare, 1);
-  c = chooseRsmLights(lights, flux, 2, {0}, 0.2);  // at least 15.6: none
+  c = chooseRsmLights(lights, flux, 2, {}, 0.2);  // at least 15.6: none
   EXPECT_TRUE(c.lights.empty());
   EXPECT_EQ(c.belowShare, 2);
+  c = chooseRsmLights(lights, flux, 2, {0}, 0.2);  // 10 ≥ 7.8 keeps its map
+  EXPECT_EQ(c.lights, (std::vector<int>{0}));
+  EXPECT_EQ(c.belowShare, 1);
   c = chooseRsmLights(lights, flux, 3, {}, 0.0);
   EXPECT_EQ(c.lights, (std::vector<int>{0, 1, 3}));
   EXPECT_EQ(c.belowShare, 0);
   c = chooseRsmLights(lights, std::vector<double>(6, 0.0), 2, {}, 0.1);
   EXPECT_EQ(c.lights, (std::vector<int>{0, 1}));
   EXPECT_EQ(c.belowShare, 0);
+  std::vector<double> nan = flux;
+  nan[5] = std::numeric_limits<double>::quiet_NaN();  // the point light
+  EXPECT_TRUE(chooseRsmLights(lights, nan, 2, {}, 0.1).lights.empty());
+  EXPECT_EQ(chooseRsmLights(lights, nan, 2, {}, 0.0).lights, (std::vector<int>{0, 1}));
 }
 
 // The choice's measure against a double-precision sum of shading::irradiance at every sample,
