@@ -176,7 +176,7 @@ int IndirectLight::gatherLayers(std::vector<int>& layers) {
 }
 
 RsmChoice IndirectLight::choose(const GBuffer& camera, const std::vector<Light>& lights,
-                                 const IndirectSettings& settings, IndirectStats& stats) {
+                                const IndirectSettings& settings, IndirectStats& stats) {
   glFinish();  // the direct light's passes are not the choice's time
   const auto start = Clock::now();
   camera.read(GBuffer::kPosition, position_);
