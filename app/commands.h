@@ -61,6 +61,9 @@ nlohmann::json nodeColourStats(const NodeColourCoder& c);
 nlohmann::json octreeStats(const OctreeSummary& o, const OctreeFrameStats& frame);
 // A frame's indirect light figures for --stats.
 nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectStats& s);
+// The note a frame whose `--indirect` added nothing gets (no map: no spot or directional
+// light, or none with the least share), or "" where maps were made.
+std::string noIndirectNote(const IndirectSettings& settings, const IndirectStats& s);
 // One line naming the lights an octree holds at every pixel because their support holds
 // the whole scene, or "" when there are none.
 std::string wholeSceneNote(const std::string& scene, const OctreeSummary& o);

@@ -236,6 +236,19 @@ nlohmann::json octreeStats(const OctreeSummary& o, const OctreeFrameStats& frame
           {"lights_lit_per_pixel", frame.lightsLit}};
 }
 
+std::string noIndirectNote(const IndirectSettings& settings, const IndirectStats& s) {
+  if (settings.mode == Indirect::None || s.rsmLights > 0) return "";
+  std::ostringstream out;
+  out << "--indirect " << indirectName(settings.mode) << ": ";
+  if (s.candidates == 0)
+    out << "the scene has no spot or directional light to cast it";
+  else
+    out << "no spot or directional light sends " << settings.rsmLeastShare
+        << " of the view's flux (--rsm-least-share)";
+  out << ": no indirect light added";
+  return out.str();
+}
+
 nlohmann::json indirectStats(const IndirectSettings& settings, const IndirectStats& s) {
   return {{"mode", indirectName(settings.mode)},
           {"rsm_size", settings.rsmSize},

@@ -136,8 +136,11 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
   }
   const std::string note = wholeSceneNote(scenePath, out.octree);
   if (!note.empty()) std::cerr << "manylight: " << note << "\n";
-  if (request.indirect.mode != Indirect::None && request.aov == Aov::None)
+  if (request.indirect.mode != Indirect::None && request.aov == Aov::None) {
     stats["indirect"] = indirectStats(request.indirect, out.frame.indirect);
+    const std::string none = noIndirectNote(request.indirect, out.frame.indirect);
+    if (!none.empty()) std::cerr << "manylight: " << output << ": " << none << "\n";
+  }
   if (request.aov != Aov::None) {
     stats["aov"] = aovChannel(request.aov).name;
   } else if (out.method == Method::Octree) {

@@ -204,6 +204,31 @@ TEST(CliOptions, TheOctreeNamesLightsWhoseRangeHoldsTheWholeScene) {
   EXPECT_EQ(s["octree"]["unreached_lights"], 1);  // the third misses the box
 }
 
+// `--indirect` that adds nothing says why on stderr, and the frame is written all the same:
+// no light of the sample scene sends all of the view's flux, and point lights cast none.
+TEST(CliOptions, IndirectLightThatAddsNothingSaysWhy) {
+  const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
+  const std::string out = (testFolder() / "none.png").string();
+  const std::string render = "render " + scene + " -o " + out + " --size 32x24 --indirect ";
+  const ProcessResult some = manylight(render + "exact");
+  ASSERT_EQ(some.exitCode, 0) << some.err;
+  EXPECT_EQ(some.err, "");
+  const ProcessResult none = manylight(render + "caches --rsm-least-share 1");
+  ASSERT_EQ(none.exitCode, 0) << none.err;
+  EXPECT_EQ(none.err, "manylight: " + out +
+                          ": --indirect caches: no spot or directional light sends 1 of the "
+                          "view's flux (--rsm-least-share): no indirect light added\n");
+  EXPECT_TRUE(fs::exists(out));
+  const std::string points =
+      writeText("points.csv", "x,y,z,r,g,b,brightness\n0,0,-30,255,255,255,1\n");
+  const ProcessResult pointOnly = manylight("render " + lookingAway() + " --lights " + points +
+                                            " -o " + out + " --size 32x24 --indirect exact");
+  ASSERT_EQ(pointOnly.exitCode, 0) << pointOnly.err;
+  EXPECT_EQ(pointOnly.err, "manylight: " + out +
+                               ": --indirect exact: the scene has no spot or directional light "
+                               "to cast it: no indirect light added\n");
+}
+
 TEST(CliOptions, TheDefaultMethodIsChosenPerSceneAndSaysWhy) {
   // 65,536 lights without a range × 320×240 pixels = 5.0e9 light evaluations: lightcuts.
   const std::string scene = lookingAway();
