@@ -147,11 +147,16 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   Progress progress(a.frames > 0 ? a.frames : 0);
   const auto playStart = Clock::now();
   nlohmann::json indirectFrames = nlohmann::json::array();
+  std::string noIndirect;  // the first frame's whose --indirect added nothing
+  int framesWithout = 0;
   const PlaybackOutcome out = play(
       baked.scene, request,
       [&](int frame, const Image& image, const FrameStats& frameStats) {
-        if (r.indirect.mode != Indirect::None)
+        if (r.indirect.mode != Indirect::None) {
           indirectFrames.push_back(indirectStats(r.indirect, frameStats.indirect));
+          const std::string note = noIndirectNote(r.indirect, frameStats.indirect);
+          if (!note.empty() && framesWithout++ == 0) noIndirect = note;
+        }
         if (!sink.write(frame, image)) return false;
         progress.step("frame " + std::to_string(frame));
         return true;
@@ -201,6 +206,9 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   }
   if (sink.closed())
     std::cerr << "manylight: output closed after " << out.framesRendered - 1 << " frames\n";
+  if (framesWithout > 0)
+    std::cerr << "manylight: " << a.output << ": " << noIndirect << " (" << framesWithout << " of "
+              << out.framesRendered << " frames)\n";
   if (a.verbose && !out.methodReason.empty()) {
     std::cerr << "manylight: " << a.scene << ": auto: " << methodName(out.method) << ": "
               << out.methodReason << "\n";

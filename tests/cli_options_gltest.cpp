@@ -204,8 +204,9 @@ TEST(CliOptions, TheOctreeNamesLightsWhoseRangeHoldsTheWholeScene) {
   EXPECT_EQ(s["octree"]["unreached_lights"], 1);  // the third misses the box
 }
 
-// `--indirect` that adds nothing says why on stderr, and the frame is written all the same:
-// no light of the sample scene sends all of the view's flux, and point lights cast none.
+// `--indirect` that adds nothing says why on stderr (`play`: in how many frames), and the
+// frames are written all the same: no light of the sample scene sends all of the view's flux,
+// and point lights cast none.
 TEST(CliOptions, IndirectLightThatAddsNothingSaysWhy) {
   const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
   const std::string out = (testFolder() / "none.png").string();
@@ -219,6 +220,15 @@ TEST(CliOptions, IndirectLightThatAddsNothingSaysWhy) {
                           ": --indirect caches: no spot or directional light sends 1 of the "
                           "view's flux (--rsm-least-share): no indirect light added\n");
   EXPECT_TRUE(fs::exists(out));
+  const std::string frames = (testFolder() / "f%d.png").string();
+  const ProcessResult played = manylight("play " + scene + " -o " + frames +
+                                         " --size 32x24 --frames 2 --indirect exact "
+                                         "--rsm-least-share 1");
+  ASSERT_EQ(played.exitCode, 0) << played.err;
+  EXPECT_EQ(played.err, "manylight: " + frames +
+                            ": --indirect exact: no spot or directional light sends 1 of the "
+                            "view's flux (--rsm-least-share): no indirect light added (2 of 2 "
+                            "frames)\n");
   const std::string points =
       writeText("points.csv", "x,y,z,r,g,b,brightness\n0,0,-30,255,255,255,1\n");
   const ProcessResult pointOnly = manylight("render " + lookingAway() + " --lights " + points +
