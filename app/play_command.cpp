@@ -100,25 +100,24 @@ class FrameSink {
 
 }  // namespace
 
-int runPlay(const PlayArgs& a, Clock::time_point processStart) {
-  PlaybackRequest request;
+// The playback `a` asks for, but its scene; false (having said why) where its size or its -o
+// pattern is not one. Throws Error for an output format no image is written in.
+bool playbackRequest(const PlayArgs& a, PlaybackRequest& request) {
   RenderRequest& r = request.frame;
-  if (!parseSize(a.size, &r.width, &r.height)) return kExitUsage;
-  const bool toStdout = a.output == "-";
-  if (!toStdout) {
+  if (!parseSize(a.size, &r.width, &r.height)) return false;
+  if (a.output != "-") {
     std::string first;
     if (!frameName(a.output, 0, &first)) {
       std::cerr << "manylight: -o: expected a file name pattern with one %d or %0Nd (e.g. "
                    "frames/%04d.png), or - "
                    "for raw RGBA8 frames on stdout, got '"
                 << a.output << "'\n";
-      return kExitUsage;
+      return false;
     }
     checkOutputPath(first);
   }
   r.camera = a.camera;
   r.rigAmbient = true;
-  FrameSink sink(a);
   r.method = a.lighting.parsed();
   r.lightcuts = a.lighting.lightcuts();
   r.indirect = a.lighting.indirectSettings();
@@ -128,6 +127,14 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   request.fps = a.fps;
   request.orbitDegrees = a.orbit;
   request.keepCuts = !a.freshCuts;
+  return true;
+}
+
+int runPlay(const PlayArgs& a, Clock::time_point processStart) {
+  PlaybackRequest request;
+  if (!playbackRequest(a, request)) return kExitUsage;
+  RenderRequest& r = request.frame;
+  FrameSink sink(a);
   const gl::Backend backend = gl::parseBackend(a.backend);
 
   const auto loadStart = Clock::now();

@@ -57,6 +57,45 @@ Image maxCutMask(const CutStats& cuts, int width, int height) {
   return mask;
 }
 
+// The stats of a frame lit by lightcuts (or the distance criterion): its cuts, and on stderr
+// the pixels whose cut reached the maximum.
+void addCutStats(nlohmann::json& stats, const RenderArgs& a, const RenderRequest& request,
+                 const RenderOutcome& out, const BakedScene& baked, const std::string& output) {
+  const CutStats& c = out.frame.cuts;
+  stats["bake_ms"] = out.bakeMs;
+  stats["cut_ms"] = out.frame.cutMs;
+  stats["avg_cut_size"] = c.averageCut;
+  stats["max_cut_size"] = c.maxCut;
+  stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
+  if (c.pixelsAtMaxCut > 0) {
+    std::cerr << "manylight: " << output << ": " << c.pixelsAtMaxCut << " of " << c.pixels
+              << " pixels reached the maximum cut (--max-cut " << request.lightcuts.maxCut << "; "
+              << kSharedCutLimit
+              << " for cuts shared by groups of pixels) before the error rule held: their error "
+                 "is not bounded"
+              << (a.maxCutMask.empty() ? " (--max-cut-mask shows where)" : "") << "\n";
+  }
+  stats["pixels_shared_cut"] = c.pixelsSharedCut;
+  stats["shared_cuts"] = c.sharedCuts;
+  stats["exact_cuts"] = c.exactCuts;
+  stats["per_pixel_groups"] = c.perPixelGroups;
+  stats["surface_splits"] = c.surfaceSplits;
+  stats["light_evaluations_per_pixel"] = c.lightEvaluations;
+  stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
+  stats["covered_pixels"] = c.pixels;
+  if (out.method == Method::Lightcuts) {
+    stats["error"] = request.lightcuts.error;
+    stats["error_mode"] = a.lighting.errorMode;
+  }
+  stats["max_cut"] = request.lightcuts.maxCut;
+  stats["cut_tile"] = request.lightcuts.tileSize;
+  stats["tree_split"] = baked.hasTrees
+                            ? (baked.trees.split == Split::Metric ? "metric" : "longest-axis")
+                            : a.input.treeSplit;
+  stats["baked_trees"] = baked.hasTrees;
+  stats["node_colour"] = nodeColourStats(out.nodeColour);
+}
+
 // Renders and writes one scene; returns its stats. Throws Error.
 // The scene's baked trees, if any, go to the renderer.
 nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
@@ -148,39 +187,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     stats["octree"] = octreeStats(out.octree, out.frame.octree);
     stats["baked_octree"] = baked.hasOctree;
   } else if (out.method != Method::Reference) {
-    const CutStats& c = out.frame.cuts;
-    stats["bake_ms"] = out.bakeMs;
-    stats["cut_ms"] = out.frame.cutMs;
-    stats["avg_cut_size"] = c.averageCut;
-    stats["max_cut_size"] = c.maxCut;
-    stats["pixels_at_max_cut"] = c.pixelsAtMaxCut;
-    if (c.pixelsAtMaxCut > 0) {
-      std::cerr << "manylight: " << output << ": " << c.pixelsAtMaxCut << " of " << c.pixels
-                << " pixels reached the maximum cut (--max-cut " << request.lightcuts.maxCut << "; "
-                << kSharedCutLimit
-                << " for cuts shared by groups of pixels) before the error rule held: their error "
-                   "is not bounded"
-                << (a.maxCutMask.empty() ? " (--max-cut-mask shows where)" : "") << "\n";
-    }
-    stats["pixels_shared_cut"] = c.pixelsSharedCut;
-    stats["shared_cuts"] = c.sharedCuts;
-    stats["exact_cuts"] = c.exactCuts;
-    stats["per_pixel_groups"] = c.perPixelGroups;
-    stats["surface_splits"] = c.surfaceSplits;
-    stats["light_evaluations_per_pixel"] = c.lightEvaluations;
-    stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
-    stats["covered_pixels"] = c.pixels;
-    if (out.method == Method::Lightcuts) {
-      stats["error"] = request.lightcuts.error;
-      stats["error_mode"] = a.lighting.errorMode;
-    }
-    stats["max_cut"] = request.lightcuts.maxCut;
-    stats["cut_tile"] = request.lightcuts.tileSize;
-    stats["tree_split"] = baked.hasTrees
-                              ? (baked.trees.split == Split::Metric ? "metric" : "longest-axis")
-                              : a.input.treeSplit;
-    stats["baked_trees"] = baked.hasTrees;
-    stats["node_colour"] = nodeColourStats(out.nodeColour);
+    addCutStats(stats, a, request, out, baked, output);
   }
   if (a.verbose) {
     std::cerr << "manylight: " << output << ": " << request.width << "x" << request.height << ", "
