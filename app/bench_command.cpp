@@ -296,15 +296,11 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   return bench;
 }
 
-int runBench(const BenchArgs& a) {
-  if (a.csv.empty() && a.json.empty()) {
-    std::cerr << "manylight: bench: give --csv FILE, --json FILE or both\n";
-    return kExitUsage;
-  }
-  const bool stability = a.suite == "stability";
-  SweepSettings settings;
+// The sweep's settings from `a`; false (having said why) where --size is not one. Throws
+// CLI::ValidationError for a method, mode or error list that is not one.
+bool benchSettings(const BenchArgs& a, bool stability, SweepSettings& settings) {
   if (stability) settings.width = 320, settings.height = 240;
-  if (!a.size.empty() && !parseSize(a.size, &settings.width, &settings.height)) return kExitUsage;
+  if (!a.size.empty() && !parseSize(a.size, &settings.width, &settings.height)) return false;
   settings.repeats = a.repeats;
   settings.referenceSeconds = a.referenceSeconds;
   settings.maxCut = a.maxCut;
@@ -326,7 +322,12 @@ int runBench(const BenchArgs& a) {
       1e-6f, 1.0f);
   settings.variants = expandVariants(methods, modes, errors);
   if (settings.variants.empty()) throw CLI::ValidationError("--methods", "no method to run");
+  return true;
+}
 
+// The cases `a` names: the stability suite's (all, or --cases), or --layouts × --counts.
+// Throws CLI::ValidationError for an unknown case, Error for one past the light budget.
+std::vector<SweepCase> benchCases(const BenchArgs& a, bool stability) {
   std::vector<SweepCase> cases;
   if (stability) {
     cases = stabilityCases();
@@ -354,6 +355,58 @@ int runBench(const BenchArgs& a) {
     if (std::size_t(c.lights) > a.lightBudget)
       throw Error(c.name + ": " + std::to_string(c.lights) + " lights exceed the light budget of " +
                   std::to_string(a.lightBudget));
+  return cases;
+}
+
+// The JSON results' header, before any run.
+nlohmann::json benchHeader(const BenchArgs& a, const SweepSettings& settings,
+                           const gl::Context& context) {
+  return {
+      {"suite", a.suite},
+      {"scene", a.scene.empty() ? "generated room (scenes/sample.gltf's geometry)" : a.scene},
+      {"width", settings.width},
+      {"height", settings.height},
+      {"repeats", settings.repeats},
+      {"reference_seconds", settings.referenceSeconds},
+      {"max_cut", settings.maxCut},
+      {"cut_tile", LightcutsSettings{}.tileSize},
+      {"backend", context.backend()},
+      {"gl_renderer", context.renderer()},
+      {"build", buildId()},
+      {"hardware_threads", std::thread::hardware_concurrency()},
+      {"runs", nlohmann::json::array()},
+  };
+}
+
+// The stability suite's turntable of `frames` frames into json["temporal"]; returns the
+// failures.
+int benchTurntable(Sweep& sweep, int frames, Progress& progress, nlohmann::json& json) {
+  int failures = 0;
+  json["temporal"] = nlohmann::json::array();
+  const SweepCase turntable = layoutCase(LightLayout::Uniform, 4096);
+  for (const auto& t : sweep.temporal(turntable, frames, [&](const std::string& what) {
+         progress.step(turntable.name + " turntable " + what);
+       })) {
+    json["temporal"].push_back({{"case", t.caseName},
+                                {"label", t.variant.label()},
+                                {"frames", t.frames},
+                                {"mean_change", jsonNumber(t.meanChange)},
+                                {"max_change", jsonNumber(t.maxChange)},
+                                {"failure", t.failure}});
+    if (!t.failure.empty()) ++failures;
+  }
+  return failures;
+}
+
+int runBench(const BenchArgs& a) {
+  if (a.csv.empty() && a.json.empty()) {
+    std::cerr << "manylight: bench: give --csv FILE, --json FILE or both\n";
+    return kExitUsage;
+  }
+  const bool stability = a.suite == "stability";
+  SweepSettings settings;
+  if (!benchSettings(a, stability, settings)) return kExitUsage;
+  const std::vector<SweepCase> cases = benchCases(a, stability);
   for (const std::string& path : {a.csv, a.json})
     if (!path.empty()) prepareTemporaryFor(path);  // fails early on an unwritable folder
 
@@ -363,21 +416,7 @@ int runBench(const BenchArgs& a) {
   const Scene scene = sweepScene(a.scene);
   Sweep sweep(scene, settings);
 
-  nlohmann::json json = {
-      {"suite", a.suite},
-      {"scene", a.scene.empty() ? "generated room (scenes/sample.gltf's geometry)" : a.scene},
-      {"width", settings.width},
-      {"height", settings.height},
-      {"repeats", settings.repeats},
-      {"reference_seconds", settings.referenceSeconds},
-      {"max_cut", settings.maxCut},
-      {"cut_tile", LightcutsSettings{}.tileSize},
-      {"backend", context->backend()},
-      {"gl_renderer", context->renderer()},
-      {"build", buildId()},
-      {"hardware_threads", std::thread::hardware_concurrency()},
-      {"runs", nlohmann::json::array()},
-  };
+  nlohmann::json json = benchHeader(a, settings, *context);
   std::string csv = csvHeader() + "\n";
   const std::set<std::string> done =
       a.resume ? resumeFrom(a, &json, &csv) : std::set<std::string>{};
@@ -414,19 +453,7 @@ int runBench(const BenchArgs& a) {
     save();
   }
   if (stability && a.frames > 0) {
-    json["temporal"] = nlohmann::json::array();
-    const SweepCase turntable = layoutCase(LightLayout::Uniform, 4096);
-    for (const auto& t : sweep.temporal(turntable, a.frames, [&](const std::string& what) {
-           progress.step(turntable.name + " turntable " + what);
-         })) {
-      json["temporal"].push_back({{"case", t.caseName},
-                                  {"label", t.variant.label()},
-                                  {"frames", t.frames},
-                                  {"mean_change", jsonNumber(t.meanChange)},
-                                  {"max_change", jsonNumber(t.maxChange)},
-                                  {"failure", t.failure}});
-      if (!t.failure.empty()) ++failures;
-    }
+    failures += benchTurntable(sweep, a.frames, progress, json);
     save();
   }
   progress.clear();

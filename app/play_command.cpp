@@ -130,6 +130,38 @@ bool playbackRequest(const PlayArgs& a, PlaybackRequest& request) {
   return true;
 }
 
+// The playback's own part of `stats`: the method, the frames and their timings.
+void addPlaybackStats(nlohmann::json& stats, const PlaybackOutcome& out,
+                      const nlohmann::json& indirectFrames) {
+  stats["method"] = methodName(out.method);
+  stats["lights"] = out.lightCount;
+  stats["frames"] = out.framesRendered;
+  stats["camera_animation"] = out.animated;
+  stats["light_animation"] = out.lightsAnimated;
+  stats["bake_ms"] = out.bakeMs;
+  stats["frame_render_ms"] = out.renderMs;
+  stats["interrupted"] = gInterrupted.load();
+  if (out.lightsAnimated) stats["frame_move_lights_ms"] = out.moveMs;
+  if (!indirectFrames.empty()) stats["frame_indirect"] = indirectFrames;
+  if (!out.methodReason.empty()) stats["method_reason"] = out.methodReason;
+  if (out.method == Method::Lightcuts || out.method == Method::LightcutsDistance) {
+    stats["frame_cut_ms"] = out.cutMs;
+    stats["frame_cuts_made"] = out.cutsMade;
+    stats["frame_cuts_kept"] = out.cutsKept;
+  }
+}
+
+// --verbose's lines after a playback: the method's reason where `auto` chose, the frame rates.
+void sayPlayback(const PlayArgs& a, const PlaybackOutcome& out, double renderSum, double wallMs) {
+  if (!out.methodReason.empty()) {
+    std::cerr << "manylight: " << a.scene << ": auto: " << methodName(out.method) << ": "
+              << out.methodReason << "\n";
+  }
+  std::cerr << "manylight: " << out.framesRendered << " frames, "
+            << (renderSum > 0 ? 1000.0 * out.framesRendered / renderSum : 0) << " fps rendering, "
+            << 1000.0 * out.framesRendered / std::max(wallMs, 1e-9) << " fps overall\n";
+}
+
 int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   PlaybackRequest request;
   if (!playbackRequest(a, request)) return kExitUsage;
@@ -177,34 +209,19 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
     nlohmann::json stats = {
         {"scene", a.scene},
         {"output", a.output},
-        {"method", methodName(out.method)},
         {"backend", context->backend()},
         {"renderer", context->renderer()},
         {"width", r.width},
         {"height", r.height},
-        {"lights", out.lightCount},
         {"baked_trees", baked.hasTrees},
-        {"frames", out.framesRendered},
         {"exposure_ev", sink.display().exposure},
         {"tone_map", toneMapName(sink.display().toneMap)},
-        {"camera_animation", out.animated},
-        {"light_animation", out.lightsAnimated},
         {"load_ms", loadMs},
-        {"bake_ms", out.bakeMs},
-        {"frame_render_ms", out.renderMs},
         {"render_fps", renderSum > 0.0 ? 1000.0 * out.framesRendered / renderSum : 0.0},
         {"wall_fps", wallMs > 0.0 ? 1000.0 * out.framesRendered / wallMs : 0.0},
-        {"interrupted", gInterrupted.load()},
         {"output_closed", sink.closed()},
         {"total_ms", msSince(processStart)}};
-    if (out.lightsAnimated) stats["frame_move_lights_ms"] = out.moveMs;
-    if (!indirectFrames.empty()) stats["frame_indirect"] = indirectFrames;
-    if (!out.methodReason.empty()) stats["method_reason"] = out.methodReason;
-    if (out.method == Method::Lightcuts || out.method == Method::LightcutsDistance) {
-      stats["frame_cut_ms"] = out.cutMs;
-      stats["frame_cuts_made"] = out.cutsMade;
-      stats["frame_cuts_kept"] = out.cutsKept;
-    }
+    addPlaybackStats(stats, out, indirectFrames);
     writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
   if (gInterrupted) {
@@ -216,15 +233,7 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   if (framesWithout > 0)
     std::cerr << "manylight: " << a.output << ": " << noIndirect << " (" << framesWithout << " of "
               << out.framesRendered << " frames)\n";
-  if (a.verbose && !out.methodReason.empty()) {
-    std::cerr << "manylight: " << a.scene << ": auto: " << methodName(out.method) << ": "
-              << out.methodReason << "\n";
-  }
-  if (a.verbose) {
-    std::cerr << "manylight: " << out.framesRendered << " frames, "
-              << (renderSum > 0 ? 1000.0 * out.framesRendered / renderSum : 0) << " fps rendering, "
-              << 1000.0 * out.framesRendered / std::max(wallMs, 1e-9) << " fps overall\n";
-  }
+  if (a.verbose) sayPlayback(a, out, renderSum, wallMs);
   return kExitOk;
 }
 

@@ -96,6 +96,33 @@ void addCutStats(nlohmann::json& stats, const RenderArgs& a, const RenderRequest
   stats["node_colour"] = nodeColourStats(out.nodeColour);
 }
 
+// Writes the frame to `output`, and the --max-cut-mask if asked; returns the display transform
+// it took. Throws Error, having removed `output` where the mask failed.
+Display writeOutputs(const RenderArgs& a, const RenderRequest& request, const RenderOutcome& out,
+                     const std::string& output) {
+  // Exposure and the tone map are for light; an AOV holds material values, written as they are.
+  // EXR stays linear: no tone map, and only an explicit exposure.
+  Display display;
+  const bool png = output.size() >= 4 && (output.substr(output.size() - 4) == ".png" ||
+                                          output.substr(output.size() - 4) == ".PNG");
+  if (request.aov == Aov::None) {
+    const std::optional<float> ev = parseExposure(a.exposure);
+    display.exposure = ev ? *ev : png ? autoExposure(out.image) : 0.0f;
+    display.toneMap = png ? parseToneMap(a.toneMap) : ToneMap::None;
+  }
+  writeImage(out.image, output, display);
+  if (!a.maxCutMask.empty()) {
+    try {
+      writeImage(maxCutMask(out.frame.cuts, request.width, request.height), a.maxCutMask);
+    } catch (...) {
+      std::error_code ec;
+      std::filesystem::remove(output, ec);  // a failed run leaves nothing behind
+      throw;
+    }
+  }
+  return display;
+}
+
 // Renders and writes one scene; returns its stats. Throws Error.
 // The scene's baked trees, if any, go to the renderer.
 nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
@@ -125,26 +152,7 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
     std::cerr << "manylight: " << scenePath << ": no camera; framing the bounds\n";
   if (out.defaultRig)
     std::cerr << "manylight: " << scenePath << ": no lights; using the default three-light rig\n";
-  // Exposure and the tone map are for light; an AOV holds material values, written as they are.
-  // EXR stays linear: no tone map, and only an explicit exposure.
-  Display display;
-  const bool png = output.size() >= 4 && (output.substr(output.size() - 4) == ".png" ||
-                                          output.substr(output.size() - 4) == ".PNG");
-  if (request.aov == Aov::None) {
-    const std::optional<float> ev = parseExposure(a.exposure);
-    display.exposure = ev ? *ev : png ? autoExposure(out.image) : 0.0f;
-    display.toneMap = png ? parseToneMap(a.toneMap) : ToneMap::None;
-  }
-  writeImage(out.image, output, display);
-  if (!a.maxCutMask.empty()) {
-    try {
-      writeImage(maxCutMask(out.frame.cuts, request.width, request.height), a.maxCutMask);
-    } catch (...) {
-      std::error_code ec;
-      std::filesystem::remove(output, ec);  // a failed run leaves nothing behind
-      throw;
-    }
-  }
+  const Display display = writeOutputs(a, request, out, output);
   nlohmann::json stats = {
       {"scene", scenePath},
       {"output", output},
@@ -199,29 +207,30 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
 
 }  // namespace
 
-int runRender(const RenderArgs& a, Clock::time_point processStart) {
-  RenderRequest request;
-  if (!parseSize(a.size, &request.width, &request.height)) return kExitUsage;
+// The frame `a` asks for; false (having said why) where its size or its outputs are not one.
+// Throws Error or CLI::ValidationError for a value that is not one.
+bool renderRequest(const RenderArgs& a, RenderRequest& request) {
+  if (!parseSize(a.size, &request.width, &request.height)) return false;
   const bool batch = !a.outDir.empty();
   if (batch == !a.output.empty()) {
     std::cerr
         << "manylight: render: give either -o OUTPUT (one scene) or --out-dir DIR (any number)\n";
-    return kExitUsage;
+    return false;
   }
   if (!batch && a.scenes.size() != 1) {
     std::cerr << "manylight: render: -o takes one scene, got " << a.scenes.size()
               << "; use --out-dir for several\n";
-    return kExitUsage;
+    return false;
   }
   if (batch && !a.maxCutMask.empty()) {
     std::cerr << "manylight: render: --max-cut-mask takes one scene (-o), not --out-dir\n";
-    return kExitUsage;
+    return false;
   }
   if (!batch && !a.maxCutMask.empty() &&
       std::filesystem::absolute(a.maxCutMask).lexically_normal() ==
           std::filesystem::absolute(a.output).lexically_normal()) {
     std::cerr << "manylight: render: --max-cut-mask names the output image " << a.output << "\n";
-    return kExitUsage;
+    return false;
   }
   request.camera = a.camera;
   request.ambient = a.ambient.empty() ? glm::vec3(0.0f) : parseRgb(a.ambient);
@@ -234,6 +243,58 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
   request.octree = a.input.octree();
   request.indirect = a.lighting.indirectSettings();
   request.octreeStats = !a.statsPath.empty();
+  return true;
+}
+
+// Renders `jobs` in one context, each scene loaded while the one before renders; a failing
+// scene is reported and the rest go on. Returns the exit code.
+int renderBatch(const RenderArgs& a, const RenderRequest& request,
+                const std::vector<Thumbnail>& jobs, std::future<LoadedScene> next,
+                const gl::Context& context, Clock::time_point processStart) {
+  nlohmann::json all = nlohmann::json::array();
+  int failed = 0;
+  Progress progress(int(jobs.size()));
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const Thumbnail& job = jobs[i];
+    progress.step(job.scene);
+    try {
+      std::future<LoadedScene> current = std::move(next);
+      if (i + 1 < jobs.size()) next = startLoading(a, jobs[i + 1].scene);
+      all.push_back(renderOne(a, request, job.scene, current.get(), job.output, context));
+    } catch (const Error& e) {
+      progress.clear();
+      std::cerr << "manylight: " << e.what() << "\n";
+      all.push_back({{"scene", job.scene}, {"output", job.output}, {"error", e.what()}});
+      ++failed;
+    } catch (const std::exception& e) {
+      progress.clear();
+      std::cerr << "manylight: " << job.scene << ": " << e.what() << "\n";
+      all.push_back({{"scene", job.scene}, {"output", job.output}, {"error", e.what()}});
+      ++failed;
+    }
+  }
+  progress.clear();
+  const double totalMs = msSince(processStart);
+  std::cerr << "manylight: rendered " << jobs.size() - failed << " of " << jobs.size()
+            << " scenes into " << a.outDir
+            << (failed ? ", " + std::to_string(failed) + " failed" : std::string()) << " ("
+            << std::lround(totalMs) << " ms)\n";
+  if (!a.statsPath.empty()) {
+    const nlohmann::json stats = {{"scenes", all},
+                                  {"rendered", int(jobs.size()) - failed},
+                                  {"failed", failed},
+                                  {"shard", a.shard.empty() ? "0/1" : a.shard},
+                                  {"backend", context.backend()},
+                                  {"total_ms", totalMs}};
+    writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
+  }
+  return failed ? kExitFailure : kExitOk;
+}
+
+int runRender(const RenderArgs& a, Clock::time_point processStart) {
+  RenderRequest request;
+  if (!renderRequest(a, request)) return kExitUsage;
+  const bool batch = !a.outDir.empty();
   const gl::Backend backend = gl::parseBackend(a.backend);
   std::vector<Thumbnail> jobs;
   if (batch) {
@@ -273,45 +334,7 @@ int runRender(const RenderArgs& a, Clock::time_point processStart) {
     if (!a.statsPath.empty()) writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
     return kExitOk;
   }
-  // A batch: one context for all; a failing scene is reported and the rest go on.
-  nlohmann::json all = nlohmann::json::array();
-  int failed = 0;
-  Progress progress(int(jobs.size()));
-  for (std::size_t i = 0; i < jobs.size(); ++i) {
-    const Thumbnail& job = jobs[i];
-    progress.step(job.scene);
-    try {
-      std::future<LoadedScene> current = std::move(next);
-      if (i + 1 < jobs.size()) next = startLoading(a, jobs[i + 1].scene);
-      all.push_back(renderOne(a, request, job.scene, current.get(), job.output, *context));
-    } catch (const Error& e) {
-      progress.clear();
-      std::cerr << "manylight: " << e.what() << "\n";
-      all.push_back({{"scene", job.scene}, {"output", job.output}, {"error", e.what()}});
-      ++failed;
-    } catch (const std::exception& e) {
-      progress.clear();
-      std::cerr << "manylight: " << job.scene << ": " << e.what() << "\n";
-      all.push_back({{"scene", job.scene}, {"output", job.output}, {"error", e.what()}});
-      ++failed;
-    }
-  }
-  progress.clear();
-  const double totalMs = msSince(processStart);
-  std::cerr << "manylight: rendered " << jobs.size() - failed << " of " << jobs.size()
-            << " scenes into " << a.outDir
-            << (failed ? ", " + std::to_string(failed) + " failed" : std::string()) << " ("
-            << std::lround(totalMs) << " ms)\n";
-  if (!a.statsPath.empty()) {
-    const nlohmann::json stats = {{"scenes", all},
-                                  {"rendered", int(jobs.size()) - failed},
-                                  {"failed", failed},
-                                  {"shard", a.shard.empty() ? "0/1" : a.shard},
-                                  {"backend", context->backend()},
-                                  {"total_ms", totalMs}};
-    writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
-  }
-  return failed ? kExitFailure : kExitOk;
+  return renderBatch(a, request, jobs, std::move(next), *context, processStart);
 }
 
 }  // namespace manylight::cli

@@ -380,7 +380,11 @@ TEST(CliTools, PlaybackOrbitsTheCameraFrameByFrame) {
     off += std::uint8_t(bytes[i]) != int(std::lround(first.rgba[i] * 255.0f));
   }
   EXPECT_EQ(off, 0);
+}
 
+TEST(CliTools, PlaybackStopsCleanly) {
+  const fs::path dir = testFolder();
+  const std::string scene = std::string(MANYLIGHT_PROJECT_SCENES) + "/sample.gltf";
   // A consumer that stops reading ends the playback cleanly, without hanging.
   EXPECT_EQ(shell(std::string(MANYLIGHT_BIN) + " play " + scene +
                   " -o - --frames 100000 --size 48x32 2>/dev/null | head -c 100 > /dev/null; exit "
@@ -402,8 +406,7 @@ TEST(CliTools, PlaybackOrbitsTheCameraFrameByFrame) {
   }
   EXPECT_GT(written, 0);
 
-  r = manylight("play " + scene + " -o " + (dir / "nopattern.png").string());
-  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_EQ(manylight("play " + scene + " -o " + (dir / "nopattern.png").string()).exitCode, 2);
 }
 
 TEST(CliTools, PlaybackFollowsTheCameraAnimation) {
