@@ -296,6 +296,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   return bench;
 }
 
+namespace {
+
 // The sweep's settings from `a`; false (having said why) where --size is not one. Throws
 // CLI::ValidationError for a method, mode or error list that is not one.
 bool benchSettings(const BenchArgs& a, bool stability, SweepSettings& settings) {
@@ -397,6 +399,8 @@ int benchTurntable(Sweep& sweep, int frames, Progress& progress, nlohmann::json&
   }
   return failures;
 }
+
+}  // namespace
 
 int runBench(const BenchArgs& a) {
   if (a.csv.empty() && a.json.empty()) {

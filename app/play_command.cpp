@@ -98,8 +98,6 @@ class FrameSink {
   std::vector<std::uint8_t> codes_;
 };
 
-}  // namespace
-
 // The playback `a` asks for, but its scene; false (having said why) where its size or its -o
 // pattern is not one. Throws Error for an output format no image is written in.
 bool playbackRequest(const PlayArgs& a, PlaybackRequest& request) {
@@ -161,6 +159,8 @@ void sayPlayback(const PlayArgs& a, const PlaybackOutcome& out, double renderSum
             << (renderSum > 0 ? 1000.0 * out.framesRendered / renderSum : 0) << " fps rendering, "
             << 1000.0 * out.framesRendered / std::max(wallMs, 1e-9) << " fps overall\n";
 }
+
+}  // namespace
 
 int runPlay(const PlayArgs& a, Clock::time_point processStart) {
   PlaybackRequest request;
@@ -224,15 +224,15 @@ int runPlay(const PlayArgs& a, Clock::time_point processStart) {
     addPlaybackStats(stats, out, indirectFrames);
     writeFileAtomic(a.statsPath, stats.dump(2) + "\n");
   }
+  if (framesWithout > 0)
+    std::cerr << "manylight: " << (a.output == "-" ? "stdout" : a.output) << ": " << noIndirect
+              << " (" << framesWithout << " of " << out.framesRendered << " frames)\n";
   if (gInterrupted) {
     std::cerr << "manylight: interrupted after " << out.framesRendered << " frames\n";
     return kExitInterrupted;
   }
   if (sink.closed())
     std::cerr << "manylight: output closed after " << out.framesRendered - 1 << " frames\n";
-  if (framesWithout > 0)
-    std::cerr << "manylight: " << a.output << ": " << noIndirect << " (" << framesWithout << " of "
-              << out.framesRendered << " frames)\n";
   if (a.verbose) sayPlayback(a, out, renderSum, wallMs);
   return kExitOk;
 }

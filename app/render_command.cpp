@@ -205,8 +205,6 @@ nlohmann::json renderOne(const RenderArgs& a, const RenderRequest& request,
   return stats;
 }
 
-}  // namespace
-
 // The frame `a` asks for; false (having said why) where its size or its outputs are not one.
 // Throws Error or CLI::ValidationError for a value that is not one.
 bool renderRequest(const RenderArgs& a, RenderRequest& request) {
@@ -290,6 +288,8 @@ int renderBatch(const RenderArgs& a, const RenderRequest& request,
   }
   return failed ? kExitFailure : kExitOk;
 }
+
+}  // namespace
 
 int runRender(const RenderArgs& a, Clock::time_point processStart) {
   RenderRequest request;
