@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
 
 #include "bake/light_pack.h"
 #include "bake/light_texture_layout.h"
@@ -98,6 +100,46 @@ TEST(Shading, SrgbIsTheExactEncodingNotAPowerLaw) {
   EXPECT_EQ(encodeSrgb8(std::nan("")), 0);
   for (int code = 0; code < 256; ++code) {
     EXPECT_EQ(encodeSrgb8(decodeSrgb8(std::uint8_t(code))), code);
+  }
+}
+
+// encodeSrgb8 finds codes by comparisons (scene/srgb.cpp): against the curve in double, rounded,
+// at two million values spread over [0, 1] in the exponent and in the value, at every float
+// and double about each boundary between two codes, and at each float bucket's edges.
+TEST(Shading, SrgbEncodingMatchesTheCurveEverywhere) {
+  const auto curve = [](double x) {
+    if (!(x > 0.0)) return 0;
+    if (x >= 1.0) return 255;
+    const double v = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+    return int(std::lround(v * 255.0));
+  };
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> exponent(-150.0, 0.0), value(0.0, 1.0);
+  for (int i = 0; i < 1000000; ++i) {
+    const double spread = std::ldexp(value(rng), int(exponent(rng))), even = value(rng);
+    ASSERT_EQ(encodeSrgb8(spread), curve(spread)) << spread;
+    ASSERT_EQ(encodeSrgb8(even), curve(even)) << even;
+  }
+  for (int code = 1; code < 256; ++code) {
+    // Where the curve reaches code − ½, then the doubles and the floats on either side of it.
+    const double v = (code - 0.5) / 255.0;
+    const double at = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+    double x = at;
+    float f = float(at);
+    for (int step = 0; step < 64; ++step) x = std::nextafter(x, 0.0), f = std::nextafter(f, 0.0f);
+    for (int step = 0; step < 128; ++step) {
+      ASSERT_EQ(encodeSrgb8(x), curve(x)) << x;
+      ASSERT_EQ(encodeSrgb8(f), curve(f)) << f;
+      x = std::nextafter(x, 1.0);
+      f = std::nextafter(f, 1.0f);
+    }
+  }
+  for (std::uint32_t bits = 0; bits <= 0x3f800000u; bits += 1u << 15) {
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    for (const double x :
+         {double(f), std::nextafter(double(f), 0.0), std::nextafter(double(f), 1.0)})
+      ASSERT_EQ(encodeSrgb8(x), curve(x)) << x;
   }
 }
 
