@@ -74,16 +74,6 @@ void upload2d(const gl::Texture& t, std::vector<glm::vec4>& texels) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
 
-// `texels` (floats, in `format`'s components) into `t` as a 3D texture of `internal` format.
-void upload3d(const gl::Texture& t, glm::ivec3 size, GLint internal, GLenum format,
-              const float* texels) {
-  glBindTexture(GL_TEXTURE_3D, t.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, internal, size.x, size.y, size.z, 0, format, GL_FLOAT, texels);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glBindTexture(GL_TEXTURE_3D, 0);
-}
-
 // `list`: the indices of `points` ordered by their cell in the grid of `cells` cells of edge
 // `cell` from `lo`. Returns per cell its first entry in `list` and its count.
 std::vector<glm::vec2> binPoints(const std::vector<glm::vec3>& points, glm::vec3 lo, float cell,
@@ -336,7 +326,12 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
           volume[at] = glm::vec2(lists[k][c].y, lists[k][c].x);
         }
   }
-  upload3d(grid_, size, GL_RG32F, GL_RG, glm::value_ptr(volume[0]));
+  glBindTexture(GL_TEXTURE_3D, grid_.id());
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_RG32F, size.x, size.y, size.z, 0, GL_RG, GL_FLOAT,
+               glm::value_ptr(volume[0]));
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_3D, 0);
 }
 
 // The entries of every cascade, in their cells' order, then the texels of the clusters as
