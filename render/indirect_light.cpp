@@ -175,13 +175,28 @@ int IndirectLight::gatherLayers(std::vector<int>& layers) {
   return passes;
 }
 
-RsmChoice IndirectLight::choose(const GBuffer& camera, const std::vector<Light>& lights,
-                                const IndirectSettings& settings, IndirectStats& stats) {
-  glFinish();  // the direct light's passes are not the choice's time
+void IndirectLight::begin(const GBuffer& camera, const Bounds& bounds, const View& view,
+                          const std::vector<Light>& lights, const IndirectSettings& settings) {
+  if (pending_.valid()) pending_.wait();  // its thread reads position_ and normal_
+  glFinish();  // the geometry pass is not the choice's time
   const auto start = Clock::now();
   camera.read(GBuffer::kPosition, position_);
   camera.read(GBuffer::kNormal, normal_);
-  glBindVertexArray(emptyVao_.id());
+  const double readMs = msSince(start);
+  const glm::vec3 eye = view.eye;
+  pending_ = std::async(std::launch::async, [this, &lights, settings, bounds, eye, readMs] {
+    Prepared p = prepare(lights, settings, bounds, eye);
+    p.stats.chooseMs += readMs;
+    return p;
+  });
+}
+
+IndirectLight::Prepared IndirectLight::prepare(const std::vector<Light>& lights,
+                                               const IndirectSettings& settings,
+                                               const Bounds& bounds, glm::vec3 eye) {
+  Prepared out;
+  IndirectStats& stats = out.stats;
+  auto start = Clock::now();
   const RsmSamples samples = sampleRsmChoice(position_, normal_, lights.size());
   const std::vector<char> due = fluxHistory_.due(lights);
   std::vector<double> flux = measureLightFlux(lights, samples, &due);
@@ -191,22 +206,31 @@ RsmChoice IndirectLight::choose(const GBuffer& camera, const std::vector<Light>&
   const std::vector<double>& means = fluxHistory_.add(lights, flux, &due);
   std::vector<int> previous;
   for (const Map& m : maps_) previous.push_back(m.index);
-  const RsmChoice choice =
-      chooseRsmLights(lights, means, settings.rsmLights, previous, settings.rsmLeastShare);
-  stats.candidates = choice.candidates;
-  stats.belowShare = choice.belowShare;
-  stats.fluxShare = fluxShare(choice.lights, means);
+  out.choice = chooseRsmLights(lights, means, settings.rsmLights, previous, settings.rsmLeastShare);
+  stats.candidates = out.choice.candidates;
+  stats.belowShare = out.choice.belowShare;
+  stats.fluxShare = fluxShare(out.choice.lights, means);
   stats.chooseMs = msSince(start);
-  return choice;
+  // No map, no caches (light() then adds nothing).
+  if (settings.mode != Indirect::Caches || out.choice.lights.empty()) return out;
+  start = Clock::now();
+  out.grid = frameCacheGrid(settings, bounds, eye);
+  allocateCaches(out.grid, position_, normal_, allocation_);
+  out.allocated = true;
+  stats.cachesRefused = allocation_.refused;
+  stats.allocateMs = msSince(start);
+  return out;
 }
 
 IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
                                    const GeometryPass& geometry, const GBuffer& camera,
                                    const View& view, const std::vector<Light>& lights,
                                    const IndirectSettings& settings) {
-  IndirectStats stats;
-  if (settings.mode == Indirect::None) return stats;
-  const RsmChoice choice = choose(camera, lights, settings, stats);
+  if (settings.mode == Indirect::None) return {};
+  if (!pending_.valid()) begin(camera, scene.bounds(), view, lights, settings);
+  Prepared prepared = pending_.get();
+  IndirectStats stats = prepared.stats;
+  const RsmChoice& choice = prepared.choice;
   auto start = Clock::now();
   const long long before = mapsRendered_;
   const bool changed = updateMaps(scene, gpu, geometry, lights, choice);
@@ -225,16 +249,14 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   const bool caches = settings.mode == Indirect::Caches;
   if (caches) {
     start = Clock::now();
-    const CacheGrid grid = frameCacheGrid(settings, scene.bounds(), view.eye);
+    const CacheGrid& grid = prepared.grid;
     if (!caches_) caches_ = std::make_unique<LightCaches>();
-    allocateCaches(grid, position_, normal_, allocation_);
-    stats.cachesRefused = allocation_.refused;
     classes_.upload(camera, allocation_.classes);
     caches_->upload(grid, allocation_, settings.shL2);
     stats.caches = caches_->count();
     stats.cascades = grid.cascades;
     stats.cacheCell = grid.cell[0];
-    stats.allocateMs = msSince(start);
+    stats.allocateMs += msSince(start);
   }
   start = Clock::now();
   glBindVertexArray(emptyVao_.id());

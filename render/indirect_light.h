@@ -4,6 +4,7 @@
 // the most flux into the view, whose texels light every pixel as small diffuse patches
 // (glsl/indirect_exact.frag). No visibility between a texel and a pixel: indirect light
 // passes through walls. Blended surfaces neither reflect nor receive it.
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,7 +51,9 @@ struct IndirectStats {
   long long rsmTexels = 0;  // map texels that reflect flux, over all maps
   double fluxShare = 1.0;   // the chosen lights' share of the means' flux (fluxShare)
   int passes = 0;           // gather passes
-  double chooseMs = 0.0;    // reading the G-buffer back and choosing the lights
+  // Reading the G-buffer back and choosing the lights (beside the direct light's passes:
+  // IndirectLight::begin)
+  double chooseMs = 0.0;
   double rsmMs = 0.0;       // rendering the maps and their flux
   double gatherMs = 0.0;    // the gather passes (exact), or the caches' (caches)
   // --indirect caches:
@@ -60,7 +63,7 @@ struct IndirectStats {
   long long cachesRefused = 0;   // CacheAllocation::refused
   int cascades = 0;
   float cacheCell = 0.0f;      // the smallest cascade's cell edge
-  double allocateMs = 0.0;     // allocated on the CPU and uploaded
+  double allocateMs = 0.0;     // allocated on the CPU (beside the direct light) and uploaded
   int nearPasses = 0;          // near-field passes (render/near_field.h)
   long long nearClusters = 0;  // NearField::clusters
   double nearMs = 0.0;         // the near field binned, uploaded and gathered per pixel
@@ -77,8 +80,15 @@ class IndirectLight {
   explicit IndirectLight(int rsmSize);
   int rsmSize() const { return rsmSize_; }
 
+  // Reads the camera's G-buffer back (its geometry pass drawn), then chooses the frame's lights
+  // and, for caches, allocates them (the CPU's part of light()) on a thread of its own, while
+  // the direct light renders; light() waits for it. `lights` stay as they are until then.
+  // Throws gl::GlError.
+  void begin(const GBuffer& camera, const Bounds& bounds, const View& view,
+             const std::vector<Light>& lights, const IndirectSettings& settings);
   // Adds one bounce from the maps of the chosen `lights` (the renderer's, by scene index) to
-  // the radiance target of `camera`, whose G-buffer holds the frame. A light the last frame
+  // the radiance target of `camera`, whose G-buffer holds the frame (after begin(), with the
+  // same arguments, or alone). A light the last frame
   // chose too, with the same values, keeps its map, and the caches at the nodes both frames
   // have keep that map's light: the scene's geometry does not change under a renderer.
   // Throws gl::GlError.
@@ -101,10 +111,18 @@ class IndirectLight {
     float nearRadius = 0.0f;
     long long texels = 0;  // that reflect flux
   };
-  // Reads the camera's G-buffer back and chooses the frame's lights (rsm_choice.h); sets the
-  // choice's part of `stats`.
-  RsmChoice choose(const GBuffer& camera, const std::vector<Light>& lights,
-                   const IndirectSettings& settings, IndirectStats& stats);
+  // What begin() makes: the frame's lights, the choice's and the allocation's parts of the
+  // stats, and for caches (where a light has a map) the cascades allocation_ holds.
+  struct Prepared {
+    RsmChoice choice;
+    IndirectStats stats;
+    CacheGrid grid;
+    bool allocated = false;
+  };
+  // Chooses the frame's lights (rsm_choice.h) from position_ and normal_, and allocates the
+  // caches for them: no GL.
+  Prepared prepare(const std::vector<Light>& lights, const IndirectSettings& settings,
+                   const Bounds& bounds, glm::vec3 eye);
   // Makes maps_ those of `choice`, rendering those the last frame had not; returns whether the
   // maps changed.
   bool updateMaps(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
@@ -125,6 +143,8 @@ class IndirectLight {
   std::vector<float> position_, normal_;
   CacheAllocation allocation_;
   RsmFluxHistory fluxHistory_;
+  // begin()'s work, declared last: destroyed first, it waits for the thread that uses the rest
+  std::future<Prepared> pending_;
 };
 
 }  // namespace manylight

@@ -142,10 +142,14 @@ int Renderer::lightReference(const View& view, const FrameSettings& settings) {
   return passes;
 }
 
-void Renderer::lightIndirect(const View& view, const IndirectSettings& settings,
-                             FrameStats* stats) {
+void Renderer::beginIndirect(const View& view, const IndirectSettings& settings) {
   if (!indirect_ || indirect_->rsmSize() != settings.rsmSize)
     indirect_ = std::make_unique<IndirectLight>(settings.rsmSize);
+  indirect_->begin(gbuffer_, scene_.bounds(), view, indirectLights_, settings);
+}
+
+void Renderer::lightIndirect(const View& view, const IndirectSettings& settings,
+                             FrameStats* stats) {
   const IndirectStats indirect =
       indirect_->light(scene_, gpu_, geometry_, gbuffer_, view, indirectLights_, settings);
   if (stats) stats->indirect = indirect;
@@ -161,6 +165,9 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
     aovPass(settings.aov).draw(scene_, gpu_, gbuffer_, view, settings.ambient, GeometryPass::kAll);
   } else {
     geometry_.draw(scene_, gpu_, gbuffer_, view, settings.ambient);
+    // The indirect light's CPU work runs beside the direct light's.
+    const bool indirect = settings.indirect.mode != Indirect::None;
+    if (indirect) beginIndirect(view, settings.indirect);
     glBindVertexArray(emptyVao_.id());
     auto light = [&] {
       if (lightcuts_) {
@@ -173,7 +180,7 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
       }
     };
     light();
-    if (settings.indirect.mode != Indirect::None) lightIndirect(view, settings.indirect, stats);
+    if (indirect) lightIndirect(view, settings.indirect, stats);
     // The opaque frame's cut statistics, before blended layers light the G-buffer again.
     if (stats && lightcuts_ && settings.readCutStats) stats->cuts = lightcuts_->cutStats();
     if (stats && octree_ && settings.octreeStats) {

@@ -126,6 +126,8 @@ class Renderer {
 
  private:
   int lightReference(const View& view, const FrameSettings& settings);
+  // Starts the frame's indirect light (IndirectLight::begin) once its G-buffer is drawn.
+  void beginIndirect(const View& view, const IndirectSettings& settings);
   // Adds the frame's indirect light (FrameSettings::indirect) to the radiance target.
   void lightIndirect(const View& view, const IndirectSettings& settings, FrameStats* stats);
   // The G-buffer pass of `aov`'s variant, made at its first use.
