@@ -1,12 +1,14 @@
 #include "render/indirect_light.h"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <glm/gtc/type_ptr.hpp>
 #include <utility>
 
 #include "bake/light_pack.h"
 #include "base/error.h"
+#include "base/parallel.h"
 #include "gl/context.h"
 #include "render/lighting_inputs.h"
 #include "render/rsm.h"
@@ -178,13 +180,13 @@ int IndirectLight::gatherLayers(std::vector<int>& layers) {
 void IndirectLight::begin(const GBuffer& camera, const Bounds& bounds, const View& view,
                           const std::vector<Light>& lights, const IndirectSettings& settings) {
   if (pending_.valid()) pending_.wait();  // its thread reads position_ and normal_
-  glFinish();  // the geometry pass is not the choice's time
+  glFinish();                             // the geometry pass is not the choice's time
   const auto start = Clock::now();
   camera.read(GBuffer::kPosition, position_);
   camera.read(GBuffer::kNormal, normal_);
   const double readMs = msSince(start);
   const glm::vec3 eye = view.eye;
-  pending_ = std::async(std::launch::async, [this, &lights, settings, bounds, eye, readMs] {
+  pending_ = std::async(kThreadOrDeferred, [this, &lights, settings, bounds, eye, readMs] {
     Prepared p = prepare(lights, settings, bounds, eye);
     p.stats.chooseMs += readMs;
     return p;
@@ -228,6 +230,7 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
                                    const IndirectSettings& settings) {
   if (settings.mode == Indirect::None) return {};
   if (!pending_.valid()) begin(camera, scene.bounds(), view, lights, settings);
+  glFinish();  // the direct light's passes are not the maps' time
   Prepared prepared = pending_.get();
   IndirectStats stats = prepared.stats;
   const RsmChoice& choice = prepared.choice;
@@ -249,6 +252,7 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   const bool caches = settings.mode == Indirect::Caches;
   if (caches) {
     start = Clock::now();
+    assert(prepared.allocated && "begin() and light() were given the same settings");
     const CacheGrid& grid = prepared.grid;
     if (!caches_) caches_ = std::make_unique<LightCaches>();
     classes_.upload(camera, allocation_.classes);

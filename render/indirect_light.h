@@ -51,11 +51,11 @@ struct IndirectStats {
   long long rsmTexels = 0;  // map texels that reflect flux, over all maps
   double fluxShare = 1.0;   // the chosen lights' share of the means' flux (fluxShare)
   int passes = 0;           // gather passes
-  // Reading the G-buffer back and choosing the lights (beside the direct light's passes:
+  // Reading the G-buffer back, and choosing the lights (beside the direct light:
   // IndirectLight::begin)
   double chooseMs = 0.0;
-  double rsmMs = 0.0;       // rendering the maps and their flux
-  double gatherMs = 0.0;    // the gather passes (exact), or the caches' (caches)
+  double rsmMs = 0.0;     // rendering the maps and their flux
+  double gatherMs = 0.0;  // the gather passes (exact), or the caches' (caches)
   // --indirect caches:
   int caches = 0;      // allocated this frame
   int cachesKept = 0;  // of them, those that kept the last frame's light (LightCaches::kept)
@@ -86,6 +86,11 @@ class IndirectLight {
   // Throws gl::GlError.
   void begin(const GBuffer& camera, const Bounds& bounds, const View& view,
              const std::vector<Light>& lights, const IndirectSettings& settings);
+  // Waits for begin()'s thread, if one runs: for a frame that ends early (the direct light
+  // threw), before the lights it reads may change or go.
+  void wait() const {
+    if (pending_.valid()) pending_.wait();
+  }
   // Adds one bounce from the maps of the chosen `lights` (the renderer's, by scene index) to
   // the radiance target of `camera`, whose G-buffer holds the frame (after begin(), with the
   // same arguments, or alone). A light the last frame

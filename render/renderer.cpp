@@ -13,6 +13,18 @@ namespace manylight {
 
 using namespace gl::api;
 
+namespace {
+
+// Waits for the indirect light's thread (IndirectLight::wait) as a frame ends, however it ends.
+struct WaitIndirect {
+  const IndirectLight* indirect;
+  ~WaitIndirect() {
+    if (indirect) indirect->wait();
+  }
+};
+
+}  // namespace
+
 Method parseMethod(const std::string& name) {
   if (name == "reference") return Method::Reference;
   if (name == "lightcuts") return Method::Lightcuts;
@@ -165,9 +177,11 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
     aovPass(settings.aov).draw(scene_, gpu_, gbuffer_, view, settings.ambient, GeometryPass::kAll);
   } else {
     geometry_.draw(scene_, gpu_, gbuffer_, view, settings.ambient);
-    // The indirect light's CPU work runs beside the direct light's.
+    // The indirect light's CPU work runs beside the direct light's; should the frame end
+    // early, its thread ends before the frame does (it reads indirectLights_).
     const bool indirect = settings.indirect.mode != Indirect::None;
     if (indirect) beginIndirect(view, settings.indirect);
+    const WaitIndirect waitIndirect{indirect ? indirect_.get() : nullptr};
     glBindVertexArray(emptyVao_.id());
     auto light = [&] {
       if (lightcuts_) {

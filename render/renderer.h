@@ -144,8 +144,8 @@ class Renderer {
   std::unique_ptr<OctreeMethod> octree_;
   std::unique_ptr<DynamicOctree> dynamic_;   // the octree method's, once lights move
   std::unique_ptr<DynamicTrees> trees_;      // the lightcuts methods', once lights move
-  std::unique_ptr<IndirectLight> indirect_;  // made on the first frame that asks for it
   std::vector<Light> indirectLights_;        // enableIndirect's
+  std::unique_ptr<IndirectLight> indirect_;  // made on the first frame that asks for it
   bool distance_ = false;                    // lightcuts-distance
   double uploadMs_ = 0.0;
   gl::VertexArray emptyVao_;  // the full-screen triangle needs a bound VAO in core profile
