@@ -23,6 +23,32 @@ struct WaitIndirect {
   }
 };
 
+// The radiance target of `gbuffer` read back, rows top-down. Throws gl::GlError on a driver
+// error the frame left.
+Image readRadiance(const GBuffer& gbuffer) {
+  Image image;
+  image.width = gbuffer.width();
+  image.height = gbuffer.height();
+  std::vector<float> rows(std::size_t(image.width) * image.height * 4);
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.lightingFramebuffer().id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rows.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR) {
+    char message[64];
+    std::snprintf(message, sizeof message, "OpenGL error 0x%04X while rendering", unsigned(error));
+    throw gl::GlError(message);
+  }
+  // GL's rows run bottom-up; images run top-down.
+  image.rgba.resize(rows.size());
+  const std::size_t stride = std::size_t(image.width) * 4;
+  for (int y = 0; y < image.height; ++y) {
+    std::copy_n(&rows[std::size_t(image.height - 1 - y) * stride], stride, &image.rgba[y * stride]);
+  }
+  return image;
+}
+
 }  // namespace
 
 Method parseMethod(const std::string& name) {
@@ -218,27 +244,8 @@ Image Renderer::render(const View& view, const FrameSettings& settings, FrameSta
   glFinish();
   const auto end = std::chrono::steady_clock::now();
 
-  Image image;
+  Image image = readRadiance(gbuffer_);
   if (settings.aov != Aov::None) image.values = aovChannel(settings.aov).values;
-  image.width = gbuffer_.width();
-  image.height = gbuffer_.height();
-  std::vector<float> rows(std::size_t(image.width) * image.height * 4);
-  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_.lightingFramebuffer().id());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rows.data());
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR) {
-    char message[64];
-    std::snprintf(message, sizeof message, "OpenGL error 0x%04X while rendering", unsigned(error));
-    throw gl::GlError(message);
-  }
-  // GL's rows run bottom-up; images run top-down.
-  image.rgba.resize(rows.size());
-  const std::size_t stride = std::size_t(image.width) * 4;
-  for (int y = 0; y < image.height; ++y) {
-    std::copy_n(&rows[std::size_t(image.height - 1 - y) * stride], stride, &image.rgba[y * stride]);
-  }
   if (stats) {
     // An AOV frame ran no lightcuts pass: it has no cut figures.
     const LightcutsMethod* cuts = settings.aov == Aov::None ? lightcuts_.get() : nullptr;
