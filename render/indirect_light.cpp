@@ -218,7 +218,6 @@ IndirectLight::Prepared IndirectLight::prepare(const std::vector<Light>& lights,
   start = Clock::now();
   out.grid = frameCacheGrid(settings, bounds, eye);
   allocateCaches(out.grid, position_, normal_, allocation_);
-  out.allocated = true;
   stats.cachesRefused = allocation_.refused;
   stats.allocateMs = msSince(start);
   return out;
@@ -252,7 +251,7 @@ IndirectStats IndirectLight::light(const Scene& scene, const GpuScene& gpu,
   const bool caches = settings.mode == Indirect::Caches;
   if (caches) {
     start = Clock::now();
-    assert(prepared.allocated && "begin() and light() were given the same settings");
+    assert(!prepared.grid.cell.empty() && "begin() and light() were given the same settings");
     const CacheGrid& grid = prepared.grid;
     if (!caches_) caches_ = std::make_unique<LightCaches>();
     classes_.upload(camera, allocation_.classes);

@@ -93,9 +93,9 @@ class IndirectLight {
   }
   // Adds one bounce from the maps of the chosen `lights` (the renderer's, by scene index) to
   // the radiance target of `camera`, whose G-buffer holds the frame (after begin(), with the
-  // same arguments, or alone). A light the last frame
-  // chose too, with the same values, keeps its map, and the caches at the nodes both frames
-  // have keep that map's light: the scene's geometry does not change under a renderer.
+  // same arguments, or alone). A light the last frame chose too, with the same values, keeps
+  // its map, and the caches at the nodes both frames have keep that map's light: the scene's
+  // geometry does not change under a renderer.
   // Throws gl::GlError.
   IndirectStats light(const Scene& scene, const GpuScene& gpu, const GeometryPass& geometry,
                       const GBuffer& camera, const View& view, const std::vector<Light>& lights,
@@ -117,12 +117,11 @@ class IndirectLight {
     long long texels = 0;  // that reflect flux
   };
   // What begin() makes: the frame's lights, the choice's and the allocation's parts of the
-  // stats, and for caches (where a light has a map) the cascades allocation_ holds.
+  // stats, and for caches (where a light has a map) the cascades allocation_ holds (else none).
   struct Prepared {
     RsmChoice choice;
     IndirectStats stats;
     CacheGrid grid;
-    bool allocated = false;
   };
   // Chooses the frame's lights (rsm_choice.h) from position_ and normal_, and allocates the
   // caches for them: no GL.
