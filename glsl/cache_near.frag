@@ -21,7 +21,8 @@ uniform sampler2D uEntryCentre;  // xyz, radius (0: a texel alone)
 uniform sampler2D uEntryNormal;
 // Σ flux, the map's near radius; negative where the cluster's texels do not share its facing
 uniform sampler2D uEntryFlux;
-// Per cascade's cell (stacked in z): its neighbours' count and first in uNeighbours
+// Per cascade's cell (stacked in z): its neighbours' count, first in uNeighbours, and count
+// before those wholly on its plane
 uniform sampler3D uGrid;
 // Per cell, the cells holding entries whose box lies within the cascade's reach of the cell's
 // box, those a pixel in the cell reads, each as (x | y << 8 | z << 16 within the cascade, its
@@ -93,12 +94,19 @@ vec3 cellLight(int base, int first, int last, vec3 x, vec3 n, float cascadeRadiu
 // Σ over the near entries of cascade k's grid: the irradiance times π.
 vec3 nearLight(int k, vec3 x, vec3 n) {
   ivec3 home = clamp(ivec3(floor((x - uGridOrigin) / uGridCell[k])), ivec3(0), uGridCells[k] - 1);
-  vec2 homeCell = texelFetch(uGrid, home + ivec3(0, 0, uGridFirstZ[k]), 0).rg;
+  vec3 homeCell = texelFetch(uGrid, home + ivec3(0, 0, uGridFirstZ[k]), 0).rgb;
   int neighbours = int(homeCell.x);
   int firstNeighbour = int(homeCell.y);
   float cascadeRadius = kNearCells * uCell[k];
   int seen = 0;  // entries of the cells before this one
   float tolerance = kPlaneTolerance * uGridCell[k];
+  // The listed cells wholly on one plane come last (render/near_grid.h, homePlanes): in or
+  // behind it, x skips them all, as it would each by its own plane below.
+  int offPlane = int(homeCell.z);
+  if (offPlane < neighbours) {
+    vec4 plane = texelFetch(uNeighbourPlanes, texelAt(firstNeighbour + offPlane), 0);
+    if (dot(plane.xyz, x) - plane.w <= tolerance) neighbours = offPlane;
+  }
   float reach = uGridReach[k];
   vec3 sum = vec3(0.0);
   for (int i = 0; i < neighbours; ++i) {

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
+#include <limits>
 
 #include "gl/context.h"
 #include "render/lighting_inputs.h"
+#include "render/near_grid.h"
 
 namespace manylight {
 
@@ -60,8 +62,6 @@ void NearField::add(const std::vector<float>& position, const std::vector<float>
 namespace {
 
 constexpr int kTextureWidth = 1 << kNearTextureShift;
-// Records a texture of the near field holds at most: their indices are floats.
-constexpr std::size_t kMostRecords = std::size_t(1) << 24;
 
 // `texels` padded with zeros to whole rows of kTextureWidth, at least one.
 void upload2d(const gl::Texture& t, std::vector<glm::vec4>& texels) {
@@ -74,143 +74,28 @@ void upload2d(const gl::Texture& t, std::vector<glm::vec4>& texels) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
 
-// `list`: the indices of `points` ordered by their cell in the grid of `cells` cells of edge
-// `cell` from `lo`. Returns per cell its first entry in `list` and its count.
-std::vector<glm::vec2> binPoints(const std::vector<glm::vec3>& points, glm::vec3 lo, float cell,
-                                 glm::ivec3 cells, std::vector<int>& list) {
-  const std::size_t n = points.size();
-  std::vector<int> home(n);
-  std::vector<glm::vec2> r(std::size_t(cells.x * cells.y * cells.z), glm::vec2(0.0f));
-  for (std::size_t i = 0; i < n; ++i) {
-    const glm::ivec3 c =
-        glm::clamp(glm::ivec3(glm::floor((points[i] - lo) / cell)), glm::ivec3(0), cells - 1);
-    home[i] = (c.z * cells.y + c.y) * cells.x + c.x;
-    r[std::size_t(home[i])].y += 1.0f;
-  }
-  float first = 0.0f;
-  for (glm::vec2& range : r) {
-    range.x = first;
-    first += range.y;
-  }
-  list.assign(n, 0);
-  std::vector<float> next(r.size());
-  for (std::size_t c = 0; c < r.size(); ++c) next[c] = r[c].x;
-  for (std::size_t i = 0; i < n; ++i) list[std::size_t(next[std::size_t(home[i])]++)] = int(i);
-  return r;
-}
-
-// Bins `points` (from `lo` to `hi`) as binPoints does in cells of edge `reach`, or of half
-// that where cells of `reach` would hold more than kNearEntriesPerCell points on average.
-// Returns the ranges, and the cells' edge and count per axis.
-std::vector<glm::vec2> binCascade(const std::vector<glm::vec3>& points, glm::vec3 lo, glm::vec3 hi,
-                                  float reach, std::vector<int>& list, float& cell,
-                                  glm::ivec3& cells) {
-  const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  std::vector<glm::vec2> r;
-  for (float perReach : {1.0f, 2.0f}) {
-    cell = std::max({reach / perReach, extent / float(kNearGridCells - 1), 1e-6f});
-    cells = glm::clamp(glm::ivec3(glm::floor((hi - lo) / cell)) + 1, glm::ivec3(1),
-                       glm::ivec3(kNearGridCells));
-    r = binPoints(points, lo, cell, cells, list);
-    std::size_t occupied = 0;
-    for (const glm::vec2& range : r) occupied += range.y > 0.0f;
-    if (points.size() <= kNearEntriesPerCell * occupied) break;
-  }
-  return r;
-}
-
-// Per cell of a grid of `cells`, the sum of `cost` over the cells within `m` of it on each
-// axis: a bound on what a pixel's window of cells holds.
-std::vector<long long> windowSums(const std::vector<long long>& cost, glm::ivec3 cells, int m) {
-  std::vector<long long> sum = cost, next(cost.size());
-  const int stride[3] = {1, cells.x, cells.x * cells.y};
-  for (int axis = 0; axis < 3; ++axis) {
-    for (int z = 0; z < cells.z; ++z)
-      for (int y = 0; y < cells.y; ++y)
-        for (int x = 0; x < cells.x; ++x) {
-          const glm::ivec3 c(x, y, z);
-          const int at = x + y * stride[1] + z * stride[2];
-          long long s = 0;
-          for (int o = std::max(c[axis] - m, 0); o <= std::min(c[axis] + m, cells[axis] - 1); ++o)
-            s += sum[std::size_t(at + (o - c[axis]) * stride[axis])];
-          next[std::size_t(at)] = s;
-        }
-    sum.swap(next);
-  }
-  return sum;
-}
-
-// Per cell of a grid of `cells` cells of edge `cell`: the cells holding entries (`ranges`)
-// whose box lies within `reach` of its own (all within `m` cells of it on each axis), appended to
-// `out` in the cells' order as (x, y, z, 0) (listedCells makes them the shader's items). Returns
-// per cell its first place in `out` and their count: a pixel in the cell reads those cells only,
-// instead of every cell of the window around it, most of them empty.
-std::vector<glm::vec2> neighbourLists(const std::vector<glm::vec2>& ranges, glm::ivec3 cells,
-                                      float cell, float reach, int m, std::vector<glm::vec4>& out) {
-  const auto index = [&](glm::ivec3 c) {
-    return std::size_t((c.z * cells.y + c.y) * cells.x + c.x);
-  };
-  // Calls visit(h) for each cell h whose box lies within reach of source cell s's.
-  const auto forEachHome = [&](glm::ivec3 s, const auto& visit) {
-    const glm::ivec3 lo = glm::max(s - m, glm::ivec3(0)), hi = glm::min(s + m, cells - 1);
-    for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x) {
-          const glm::vec3 gap =
-              glm::vec3(glm::max(glm::abs(glm::ivec3(x, y, z) - s) - 1, glm::ivec3(0))) * cell;
-          if (glm::dot(gap, gap) < reach * reach) visit(index(glm::ivec3(x, y, z)));
-        }
-  };
-  const auto forEachSource = [&](const auto& visit) {
-    for (int z = 0; z < cells.z; ++z)
-      for (int y = 0; y < cells.y; ++y)
-        for (int x = 0; x < cells.x; ++x)
-          if (ranges[index(glm::ivec3(x, y, z))].y > 0.0f) visit(glm::ivec3(x, y, z));
-  };
-  std::vector<std::size_t> count(ranges.size(), 0);
-  forEachSource([&](glm::ivec3 s) { forEachHome(s, [&](std::size_t h) { ++count[h]; }); });
-  std::vector<std::size_t> next(ranges.size());
-  std::size_t first = out.size();
-  for (std::size_t h = 0; h < count.size(); ++h) {
-    next[h] = first;
-    first += count[h];
-  }
-  // Listed by float texels: exact up to 2^24.
-  if (first > kMostRecords)
-    throw gl::GlError("the near field needs " + std::to_string(first) +
-                      " cell lists, past 16,777,216: use fewer or smaller maps (--rsm-lights, "
-                      "--rsm-size)");
-  std::vector<glm::vec2> lists(ranges.size());
-  for (std::size_t h = 0; h < count.size(); ++h)
-    lists[h] = glm::vec2(float(next[h]), float(count[h]));
-  out.resize(first);
-  forEachSource([&](glm::ivec3 s) {
-    forEachHome(s, [&](std::size_t h) { out[next[h]++] = glm::vec4(glm::vec3(s), 0.0f); });
-  });
-  return lists;
-}
-
-// The items of a cascade's neighbour lists, out[from, end) as neighbourLists left them: each
-// listed cell's (x | y << 8 | z << 16, first entry, count, count before its plane's entries)
-// per `ranges` (first entries counted over every cascade) and `before`, and its plane
-// appended to `planesOut`: the near field reads a listed cell in two texels.
-void listedCells(const std::vector<glm::vec2>& ranges, const std::vector<glm::vec4>& planes,
-                 const std::vector<float>& before, glm::ivec3 cells, std::size_t from,
-                 std::vector<glm::vec4>& out, std::vector<glm::vec4>& planesOut) {
-  static_assert(kNearGridCells <= 256, "a cell's coordinates are packed in 8 bits each");
-  for (std::size_t i = from; i < out.size(); ++i) {
-    const glm::ivec3 s(out[i]);
-    const std::size_t c = std::size_t((s.z * cells.y + s.y) * cells.x + s.x);
-    out[i] = glm::vec4(float(s.x | s.y << 8 | s.z << 16), ranges[c].x, ranges[c].y, before[c]);
-    planesOut.push_back(planes[c]);
-  }
-}
-
-long long largest(const std::vector<long long>& v) {
-  return v.empty() ? 0 : *std::max_element(v.begin(), v.end());
-}
-
 }  // namespace
+
+// Per cell of `ranges` (its entries in `list`), the box of its entries' texels from `origin`:
+// least corner, then greatest (both inverted in a cell without entries).
+std::vector<glm::vec3> NearField::texelBounds(const std::vector<Entry>& entries,
+                                              const std::vector<int>& list,
+                                              const std::vector<glm::vec2>& ranges,
+                                              glm::vec3 origin) {
+  std::vector<glm::vec3> bounds(2 * ranges.size());
+  for (std::size_t c = 0; c < ranges.size(); ++c) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (std::size_t j = std::size_t(ranges[c].x); j < std::size_t(ranges[c].x + ranges[c].y);
+         ++j) {
+      const glm::vec4 e = entries[std::size_t(list[j])].centreRadius;
+      lo = glm::min(lo, glm::vec3(e) - e.w);
+      hi = glm::max(hi, glm::vec3(e) + e.w);
+    }
+    bounds[2 * c] = lo - origin;
+    bounds[2 * c + 1] = hi - origin;
+  }
+  return bounds;
+}
 
 // The entries of cascade k (cells of edge `cell`): each cluster, or where its radius passes
 // kNearClusterSpread · r, each of its texels alone.
@@ -308,11 +193,11 @@ std::vector<glm::vec4> NearField::cellPlanes(const std::vector<Entry>& entries,
   return planes;
 }
 
-// Per cascade's cell, stacked in z in a volume of `size`: its neighbourLists' count and first
-// (grid_).
-void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& lists) {
-  std::vector<glm::vec2> volume(std::size_t(size.x) * std::size_t(size.y) * std::size_t(size.z),
-                                glm::vec2(0.0f));
+// Per cascade's cell, stacked in z in a volume of `size`: its list's count, first, and count
+// before the cells on its plane (homePlanes; grid_).
+void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec3>>& lists) {
+  std::vector<glm::vec3> volume(std::size_t(size.x) * std::size_t(size.y) * std::size_t(size.z),
+                                glm::vec3(0.0f));
   for (std::size_t k = 0; k < lists.size(); ++k) {
     const glm::ivec3 cells = cells_[k];
     for (int z = 0; z < cells.z; ++z)
@@ -323,11 +208,11 @@ void NearField::uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::
                   std::size_t(size.x) +
               std::size_t(x);
           const std::size_t c = std::size_t((z * cells.y + y) * cells.x + x);
-          volume[at] = glm::vec2(lists[k][c].y, lists[k][c].x);
+          volume[at] = glm::vec3(lists[k][c].y, lists[k][c].x, lists[k][c].z);
         }
   }
   glBindTexture(GL_TEXTURE_3D, grid_.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_RG32F, size.x, size.y, size.z, 0, GL_RG, GL_FLOAT,
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, size.x, size.y, size.z, 0, GL_RGB, GL_FLOAT,
                glm::value_ptr(volume[0]));
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -387,7 +272,7 @@ void NearField::upload(const CacheGrid& grid) {
   origin_ = lo;
   clusterEntries_ = 0;
   std::vector<Entry> ordered;                 // every cascade's entries in its cells' order
-  std::vector<std::vector<glm::vec2>> lists;  // per cascade, per cell: neighbourLists
+  std::vector<std::vector<glm::vec3>> lists;  // per cascade, per cell: its list (homePlanes)
   std::vector<glm::vec4> neighbours, planes;  // every cascade's listedCells
   cell_.clear(), reach_.clear(), spread_.clear(), cells_.clear(), firstZ_.clear();
   std::vector<std::vector<int>> first, count;  // per cascade, per pass
@@ -414,9 +299,11 @@ void NearField::upload(const CacheGrid& grid) {
     const int m = int(std::ceil(reach / cell)) + 1;
     cascadePasses(entries, list, r, cells, m, first.back(), count.back());
     const std::size_t listed = neighbours.size();
-    lists.push_back(neighbourLists(r, cells, cell, reach, m, neighbours));
+    const std::vector<glm::vec2> homes = neighbourLists(r, texelBounds(entries, list, r, lo), cells,
+                                                        cell, reach - spread, m, neighbours);
     for (glm::vec2& range : r) range.x += float(ordered.size());
     listedCells(r, cellPlane, before, cells, listed, neighbours, planes);
+    lists.push_back(homePlanes(homes, neighbours, planes));
     for (int i : list) ordered.push_back(entries[std::size_t(i)]);
     cell_.push_back(cell), reach_.push_back(reach), spread_.push_back(spread);
     cells_.push_back(cells);

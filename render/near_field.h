@@ -18,9 +18,11 @@
 // its texels nearer: so a map of texels much smaller than r (a narrow spot, a near wall) costs
 // a pixel its clusters, not its texels. The pixels find their entries through a world-space
 // grid per cascade, of cells as wide as the entries' reach (2r and an entry's radius) or half
-// that (kNearEntriesPerCell), built on the CPU from the maps read back: each pixel reads the
-// cells within that reach of it, and leaves out those wholly behind its surface, and of each
-// cell the entries on the plane most of its texels share where it is in or behind that plane.
+// that (kNearEntriesPerCell), built on the CPU from the maps read back (render/near_grid.h):
+// each pixel reads the cells its own cell lists, those whose texels lie within that reach of
+// it, and leaves out those wholly behind its surface, and of each cell the entries on the plane
+// most of its texels share where it is in or behind that plane; its cell lists last the cells
+// wholly on one plane, which such a pixel skips at once.
 #include <cmath>
 #include <glm/glm.hpp>
 #include <vector>
@@ -106,6 +108,9 @@ class NearField {
   // coordinates, range of entries and count before its plane's, and its plane (cellPlanes).
   gl::Texture centres_, normals_, fluxes_, grid_, neighbours_, neighbourPlanes_;
   std::vector<Entry> cascadeEntries(float cell) const;
+  static std::vector<glm::vec3> texelBounds(const std::vector<Entry>& entries,
+                                            const std::vector<int>& list,
+                                            const std::vector<glm::vec2>& ranges, glm::vec3 origin);
   static void cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
                             const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
                             std::vector<int>& first, std::vector<int>& count);
@@ -117,7 +122,7 @@ class NearField {
   std::vector<glm::vec4> cellPlanes(const std::vector<Entry>& entries, std::vector<int>& list,
                                     const std::vector<glm::vec2>& ranges, float tolerance,
                                     std::vector<float>& before) const;
-  void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec2>>& lists);
+  void uploadGrids(glm::ivec3 size, const std::vector<std::vector<glm::vec3>>& lists);
   void uploadEntries(const std::vector<Entry>& ordered);
 };
 
