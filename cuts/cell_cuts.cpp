@@ -273,11 +273,11 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
 
 long long CellCuts::cutCells(const std::vector<int>& grown, const CutRule& rule, int threads,
                              int level) {
-  // Under the node rule cells split (or fall back to the frame's squares) where their cut
-  // exceeds splitCut, as the frame's groups larger than the finest do; under the total rule
-  // where it fills up.
+  // Cells split (or fall back to the frame's squares) only where their cut fills up, under
+  // either rule: unlike the frame's squares, which split under the node rule past splitCut
+  // (kSplitCut says why), a cell keeps its cut from frame to frame, and a split found its
+  // eight cells' cuts, and theirs, in the frame that saw it.
   CutRule cellRule = rule;
-  if (!rule.total) cellRule.maxCut = splitCut(rule);
   cellRule.shareFull = false;
   const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));
   std::vector<long long> bounds(std::size_t(workers), 0);

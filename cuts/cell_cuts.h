@@ -16,8 +16,9 @@
 // cone that spreads widens by kConeGrow radians more than it must, so that regions soon stop
 // growing. At kGrow = 1 the box spans the cube along such an axis at once: in a 90° orbit of
 // the 65,536-light rooms, 26–38% fewer cuts are found than at ¼, with the same errors against
-// the reference (docs/lightcuts.md). A cell whose cut is full splits into eight cubes of half
-// its edge, for good (kMaxCellLevel). Each pixel checks the rule for itself, with bounds that
+// the reference (docs/lightcuts.md). A cell's cut takes up to the rule's maximum (the
+// finest squares' limit, not splitCut: CellCuts::cutCells says why), and a cell whose cut is
+// full splits into eight cubes of half its edge, for good (kMaxCellLevel). Each pixel checks the rule for itself, with bounds that
 // hold over its cell's region, which holds the pixel: the total rule's guarantee is kept.
 #include <cstdint>
 #include <unordered_map>
