@@ -18,8 +18,9 @@
 // the 65,536-light rooms, 26–38% fewer cuts are found than at ¼, with the same errors against
 // the reference (docs/lightcuts.md). A cell's cut takes up to the rule's maximum (the
 // finest squares' limit, not splitCut: CellCuts::cutCells says why), and a cell whose cut is
-// full splits into eight cubes of half its edge, for good (kMaxCellLevel). Each pixel checks the rule for itself, with bounds that
-// hold over its cell's region, which holds the pixel: the total rule's guarantee is kept.
+// full splits into eight cubes of half its edge, for good (kMaxCellLevel). Each pixel checks
+// the rule for itself, with bounds that hold over its cell's region, which holds the pixel:
+// the total rule's guarantee is kept.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
