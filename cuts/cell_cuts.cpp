@@ -273,11 +273,12 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
 
 long long CellCuts::cutCells(const std::vector<int>& grown, const CutRule& rule, int threads,
                              int level) {
-  // Cells split (or fall back to the frame's squares) only where their cut fills up, under
-  // either rule, where the frame's squares split under the node rule past splitCut (kSplitCut
-  // says why): a square's quarters are cut for one frame, while a cell keeps its cut, and the
-  // frame that splits it finds the cuts of its eight cells, and of theirs, at once
-  // (docs/lightcuts.md measures both).
+  // Cells split (or fall back to the frame's squares) only where their cut fills up, or past
+  // half of it still far from the rule (cut_region::kHopeless), under either rule; the
+  // frame's squares split under the node rule past splitCut (kSplitCut says why). A square's
+  // quarters are cut for one frame, while a cell keeps its cut, and the frame that splits it
+  // finds the cuts of its eight cells, and of theirs, at once (docs/lightcuts.md measures
+  // both).
   CutRule cellRule = rule;
   cellRule.shareFull = false;
   const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));

@@ -24,9 +24,10 @@ uniform sampler2D uEntryFlux;
 // Per cascade's cell (stacked in z): its neighbours' count, first in uNeighbours, and count
 // before those wholly on its plane
 uniform sampler3D uGrid;
-// Per cell, the cells holding entries whose box lies within the cascade's reach of the cell's
-// box, those a pixel in the cell reads, each as (x | y << 8 | z << 16 within the cascade, its
-// first entry, their count, how many come before those whose texels all lie on its plane)
+// Per cell, the cells holding entries whose texels lie within 2r of the cell's box (r the
+// cascade's largest near radius; render/near_grid.h), those a pixel in the cell reads, each as
+// (x | y << 8 | z << 16 within the cascade, its first entry, their count, how many come
+// before those whose texels all lie on its plane)
 uniform sampler2D uNeighbours;
 // and the plane the most of its texels share (n, n·p), or 0
 uniform sampler2D uNeighbourPlanes;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
-#include <limits>
 
 #include "gl/context.h"
 #include "render/lighting_inputs.h"
@@ -75,27 +74,6 @@ void upload2d(const gl::Texture& t, std::vector<glm::vec4>& texels) {
 }
 
 }  // namespace
-
-// Per cell of `ranges` (its entries in `list`), the box of its entries' texels from `origin`:
-// least corner, then greatest (both inverted in a cell without entries).
-std::vector<glm::vec3> NearField::texelBounds(const std::vector<Entry>& entries,
-                                              const std::vector<int>& list,
-                                              const std::vector<glm::vec2>& ranges,
-                                              glm::vec3 origin) {
-  std::vector<glm::vec3> bounds(2 * ranges.size());
-  for (std::size_t c = 0; c < ranges.size(); ++c) {
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (std::size_t j = std::size_t(ranges[c].x); j < std::size_t(ranges[c].x + ranges[c].y);
-         ++j) {
-      const glm::vec4 e = entries[std::size_t(list[j])].centreRadius;
-      lo = glm::min(lo, glm::vec3(e) - e.w);
-      hi = glm::max(hi, glm::vec3(e) + e.w);
-    }
-    bounds[2 * c] = lo - origin;
-    bounds[2 * c + 1] = hi - origin;
-  }
-  return bounds;
-}
 
 // The entries of cascade k (cells of edge `cell`): each cluster, or where its radius passes
 // kNearClusterSpread · r, each of its texels alone.
@@ -280,9 +258,11 @@ void NearField::upload(const CacheGrid& grid) {
   for (int k = 0; k < grid.cascades; ++k) {
     const std::vector<Entry> entries = cascadeEntries(grid.cell[std::size_t(k)]);
     std::vector<glm::vec3> points;
+    std::vector<glm::vec4> spheres;  // each entry's centre and radius: its texels' reach
     float spread = 0.0f;
     for (const Entry& e : entries) {
       points.push_back(glm::vec3(e.centreRadius));
+      spheres.push_back(e.centreRadius);
       spread = std::max(spread, e.centreRadius.w);
     }
     const float reach = 2.0f * std::max(mapRadius, kNearCells * grid.cell[std::size_t(k)]) + spread;
@@ -299,7 +279,7 @@ void NearField::upload(const CacheGrid& grid) {
     const int m = int(std::ceil(reach / cell)) + 1;
     cascadePasses(entries, list, r, cells, m, first.back(), count.back());
     const std::size_t listed = neighbours.size();
-    const std::vector<glm::vec2> homes = neighbourLists(r, texelBounds(entries, list, r, lo), cells,
+    const std::vector<glm::vec2> homes = neighbourLists(r, texelBounds(spheres, list, r, lo), cells,
                                                         cell, reach - spread, m, neighbours);
     for (glm::vec2& range : r) range.x += float(ordered.size());
     listedCells(r, cellPlane, before, cells, listed, neighbours, planes);

@@ -19,10 +19,11 @@
 // a pixel its clusters, not its texels. The pixels find their entries through a world-space
 // grid per cascade, of cells as wide as the entries' reach (2r and an entry's radius) or half
 // that (kNearEntriesPerCell), built on the CPU from the maps read back (render/near_grid.h):
-// each pixel reads the cells its own cell lists, those whose texels lie within that reach of
-// it, and leaves out those wholly behind its surface, and of each cell the entries on the plane
-// most of its texels share where it is in or behind that plane; its cell lists last the cells
-// wholly on one plane, which such a pixel skips at once.
+// each pixel reads the cells its own cell lists, those whose entries' texels lie within 2r
+// of its cell (r the cascade's largest), and leaves out those wholly behind its surface, and
+// of each cell the entries on the plane most of its texels share where it is in or behind
+// that plane; its cell lists last the cells wholly on one plane, which such a pixel skips at
+// once.
 #include <cmath>
 #include <glm/glm.hpp>
 #include <vector>
@@ -108,9 +109,6 @@ class NearField {
   // coordinates, range of entries and count before its plane's, and its plane (cellPlanes).
   gl::Texture centres_, normals_, fluxes_, grid_, neighbours_, neighbourPlanes_;
   std::vector<Entry> cascadeEntries(float cell) const;
-  static std::vector<glm::vec3> texelBounds(const std::vector<Entry>& entries,
-                                            const std::vector<int>& list,
-                                            const std::vector<glm::vec2>& ranges, glm::vec3 origin);
   static void cascadePasses(const std::vector<Entry>& entries, const std::vector<int>& list,
                             const std::vector<glm::vec2>& ranges, glm::ivec3 cells, int m,
                             std::vector<int>& first, std::vector<int>& count);

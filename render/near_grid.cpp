@@ -1,6 +1,7 @@
 #include "render/near_grid.h"
 
 #include <algorithm>
+#include <limits>
 #include <string>
 
 #include "gl/context.h"
@@ -119,6 +120,24 @@ std::vector<glm::vec2> neighbourLists(const std::vector<glm::vec2>& ranges,
     forEachHome(s, [&](std::size_t h) { out[next[h]++] = glm::vec4(glm::vec3(s), 0.0f); });
   });
   return lists;
+}
+
+std::vector<glm::vec3> texelBounds(const std::vector<glm::vec4>& spheres,
+                                   const std::vector<int>& list,
+                                   const std::vector<glm::vec2>& ranges, glm::vec3 origin) {
+  std::vector<glm::vec3> bounds(2 * ranges.size());
+  for (std::size_t c = 0; c < ranges.size(); ++c) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    const std::size_t first = std::size_t(ranges[c].x), end = first + std::size_t(ranges[c].y);
+    for (std::size_t j = first; j < end; ++j) {
+      const glm::vec4 e = spheres[std::size_t(list[j])];
+      lo = glm::min(lo, glm::vec3(e) - e.w);
+      hi = glm::max(hi, glm::vec3(e) + e.w);
+    }
+    bounds[2 * c] = lo - origin;
+    bounds[2 * c + 1] = hi - origin;
+  }
+  return bounds;
 }
 
 void listedCells(const std::vector<glm::vec2>& ranges, const std::vector<glm::vec4>& planes,

@@ -24,6 +24,13 @@ std::vector<long long> windowSums(const std::vector<long long>& cost, glm::ivec3
 
 long long largest(const std::vector<long long>& v);
 
+// Per cell of `ranges` (its points' indices in `list`), the box of its points' spheres
+// (`spheres`: centre and radius per point, the radius the reach of an entry's texels from its
+// centre) from `origin`: least corner, then greatest (inverted in a cell without points).
+std::vector<glm::vec3> texelBounds(const std::vector<glm::vec4>& spheres,
+                                   const std::vector<int>& list,
+                                   const std::vector<glm::vec2>& ranges, glm::vec3 origin);
+
 // Per cell of a grid of `cells` cells of edge `cell` from the origin: the cells holding entries
 // (`ranges`) whose texels lie within `reach` of its box (all within `m` cells of it on each
 // axis), appended to `out` in the cells' order as (x, y, z, 0) (listedCells makes them the
