@@ -257,11 +257,9 @@ void NearField::upload(const CacheGrid& grid) {
   glm::ivec3 size(1, 1, 0);
   for (int k = 0; k < grid.cascades; ++k) {
     const std::vector<Entry> entries = cascadeEntries(grid.cell[std::size_t(k)]);
-    std::vector<glm::vec3> points;
     std::vector<glm::vec4> spheres;  // each entry's centre and radius: its texels' reach
     float spread = 0.0f;
     for (const Entry& e : entries) {
-      points.push_back(glm::vec3(e.centreRadius));
       spheres.push_back(e.centreRadius);
       spread = std::max(spread, e.centreRadius.w);
     }
@@ -269,7 +267,7 @@ void NearField::upload(const CacheGrid& grid) {
     float cell = 0.0f;
     glm::ivec3 cells;
     std::vector<int> list;
-    std::vector<glm::vec2> r = binCascade(points, lo, hi, reach, list, cell, cells);
+    std::vector<glm::vec2> r = binCascade(spheres, lo, hi, reach, list, cell, cells);
     std::vector<float> before;
     const std::vector<glm::vec4> cellPlane =
         cellPlanes(entries, list, r, kPlaneTolerance * cell, before);

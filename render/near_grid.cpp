@@ -11,16 +11,16 @@ namespace manylight {
 
 namespace {
 
-// `list`: the indices of `points` ordered by their cell in the grid of `cells` cells of edge
-// `cell` from `lo`. Returns per cell its first entry in `list` and its count.
-std::vector<glm::vec2> binPoints(const std::vector<glm::vec3>& points, glm::vec3 lo, float cell,
+// `list`: the indices of `spheres` ordered by the cell of their centres in the grid of `cells`
+// cells of edge `cell` from `lo`. Returns per cell its first entry in `list` and its count.
+std::vector<glm::vec2> binPoints(const std::vector<glm::vec4>& spheres, glm::vec3 lo, float cell,
                                  glm::ivec3 cells, std::vector<int>& list) {
-  const std::size_t n = points.size();
+  const std::size_t n = spheres.size();
   std::vector<int> home(n);
   std::vector<glm::vec2> r(std::size_t(cells.x * cells.y * cells.z), glm::vec2(0.0f));
   for (std::size_t i = 0; i < n; ++i) {
-    const glm::ivec3 c =
-        glm::clamp(glm::ivec3(glm::floor((points[i] - lo) / cell)), glm::ivec3(0), cells - 1);
+    const glm::ivec3 c = glm::clamp(glm::ivec3(glm::floor((glm::vec3(spheres[i]) - lo) / cell)),
+                                    glm::ivec3(0), cells - 1);
     home[i] = (c.z * cells.y + c.y) * cells.x + c.x;
     r[std::size_t(home[i])].y += 1.0f;
   }
@@ -38,7 +38,7 @@ std::vector<glm::vec2> binPoints(const std::vector<glm::vec3>& points, glm::vec3
 
 }  // namespace
 
-std::vector<glm::vec2> binCascade(const std::vector<glm::vec3>& points, glm::vec3 lo, glm::vec3 hi,
+std::vector<glm::vec2> binCascade(const std::vector<glm::vec4>& spheres, glm::vec3 lo, glm::vec3 hi,
                                   float reach, std::vector<int>& list, float& cell,
                                   glm::ivec3& cells) {
   const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
@@ -47,10 +47,10 @@ std::vector<glm::vec2> binCascade(const std::vector<glm::vec3>& points, glm::vec
     cell = std::max({reach / perReach, extent / float(kNearGridCells - 1), 1e-6f});
     cells = glm::clamp(glm::ivec3(glm::floor((hi - lo) / cell)) + 1, glm::ivec3(1),
                        glm::ivec3(kNearGridCells));
-    r = binPoints(points, lo, cell, cells, list);
+    r = binPoints(spheres, lo, cell, cells, list);
     std::size_t occupied = 0;
     for (const glm::vec2& range : r) occupied += range.y > 0.0f;
-    if (points.size() <= kNearEntriesPerCell * occupied) break;
+    if (spheres.size() <= kNearEntriesPerCell * occupied) break;
   }
   return r;
 }

@@ -10,11 +10,12 @@ namespace manylight {
 // Records a texture of the near field holds at most: their indices are floats.
 inline constexpr std::size_t kMostRecords = std::size_t(1) << 24;
 
-// Bins `points` (from `lo` to `hi`) in cells of edge `reach`, or of half that where cells of
-// `reach` would hold more than kNearEntriesPerCell points on average: `list` gets the points'
+// Bins `spheres` (an entry's centre and radius, the reach of its texels from the centre) by
+// their centres (from `lo` to `hi`) in cells of edge `reach`, or of half that where cells of
+// `reach` would hold more than kNearEntriesPerCell entries on average: `list` gets their
 // indices ordered by cell. Returns per cell its first place in `list` and its count, and the
 // cells' edge and count per axis.
-std::vector<glm::vec2> binCascade(const std::vector<glm::vec3>& points, glm::vec3 lo, glm::vec3 hi,
+std::vector<glm::vec2> binCascade(const std::vector<glm::vec4>& spheres, glm::vec3 lo, glm::vec3 hi,
                                   float reach, std::vector<int>& list, float& cell,
                                   glm::ivec3& cells);
 
@@ -24,9 +25,8 @@ std::vector<long long> windowSums(const std::vector<long long>& cost, glm::ivec3
 
 long long largest(const std::vector<long long>& v);
 
-// Per cell of `ranges` (its points' indices in `list`), the box of its points' spheres
-// (`spheres`: centre and radius per point, the radius the reach of an entry's texels from its
-// centre) from `origin`: least corner, then greatest (inverted in a cell without points).
+// Per cell of `ranges` (its entries' indices in `list`), the box of its entries' `spheres`
+// from `origin`: least corner, then greatest (inverted in a cell without entries).
 std::vector<glm::vec3> texelBounds(const std::vector<glm::vec4>& spheres,
                                    const std::vector<int>& list,
                                    const std::vector<glm::vec2>& ranges, glm::vec3 origin);

@@ -103,7 +103,6 @@ TEST(NearGrid, ReachIsMeasuredFromTheTexelsFacingTheCell) {
 TEST(NearGrid, EveryEntryWithinReachIsInAListedCell) {
   std::mt19937 random(5);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  std::vector<glm::vec3> points;
   std::vector<glm::vec4> spheres;
   float spread = 0.0f;
   for (int i = 0; i < 3000; ++i) {
@@ -111,7 +110,6 @@ TEST(NearGrid, EveryEntryWithinReachIsInAListedCell) {
     glm::vec3 p(unit(random), unit(random), unit(random));
     if (i % 4 < 3) p[i % 4] = 0.0f;
     const float radius = i % 3 == 0 ? 0.04f * unit(random) : 0.0f;
-    points.push_back(p);
     spheres.push_back(glm::vec4(p, radius));
     spread = std::max(spread, radius);
   }
@@ -120,13 +118,13 @@ TEST(NearGrid, EveryEntryWithinReachIsInAListedCell) {
   float cell = 0.0f;
   glm::ivec3 cells;
   const glm::vec3 lo(0.0f), hi(1.0f);
-  const std::vector<glm::vec2> ranges = binCascade(points, lo, hi, reach, list, cell, cells);
+  const std::vector<glm::vec2> ranges = binCascade(spheres, lo, hi, reach, list, cell, cells);
   const int m = int(std::ceil(reach / cell)) + 1;
   std::vector<glm::vec4> out;
   const std::vector<glm::vec2> lists =
       neighbourLists(ranges, texelBounds(spheres, list, ranges, lo), cells, cell, twoR, m, out);
   // The cell of each entry.
-  std::vector<int> cellOf(points.size());
+  std::vector<int> cellOf(spheres.size());
   for (std::size_t c = 0; c < ranges.size(); ++c)
     for (int j = int(ranges[c].x); j < int(ranges[c].x + ranges[c].y); ++j)
       cellOf[std::size_t(list[std::size_t(j)])] = int(c);
