@@ -4,7 +4,7 @@
 // with std::min and std::max's semantics ((b < a) ? b : a and (a < b) ? b : a), and on the
 // bits of floats: vexponent (a normal float's unbiased exponent, as a float), vmantissa (its
 // mantissa with exponent 0, in [1, 2)) and vexp2Integer (2^k for integral k in [−126, 127]). The
-// bounds are those glsl/lighting_lightcuts.frag's nodeBounds puts on a node at one point, over a
+// bounds are those glsl/lightcuts_walk.glsl's nodeBounds puts on a node at one point, over a
 // region of shading points instead (a box of positions, a cone of normals), and for spot nodes
 // tighter: their cone factor bounded above and below (spotConeLanes), where the shader's walk
 // takes 1 or 0 and a lower bound of 0. Every branch is taken by every lane and its results

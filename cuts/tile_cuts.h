@@ -80,7 +80,7 @@ namespace manylight {
 // 8,000 it takes 1,093 cuts and 0.7–0.9 s (docs/performance.md).
 inline constexpr int kSharedCutLimit = 8000;
 // llvmpipe ends every loop of a shader invocation once all its loops together have run 65,535
-// iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), silently: glsl/lighting_lightcuts.frag
+// iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), silently: glsl/lightcuts_walk.glsl
 // counts its iterations against this budget.
 inline constexpr int kIterationBudget = 65000;
 static_assert(kSharedCutLimit < (1 << 15),
@@ -169,7 +169,7 @@ inline constexpr std::uint32_t kLobesBit = 0x8000u;
 // as at the maximum, instead of walking a cut of its own.
 inline constexpr std::uint32_t kFullCutBit = 0x80000000u;
 // Both rules hold on a pixel whose bound is at most this (near-black pixels), on the CPU and
-// in glsl/lighting_lightcuts.frag.
+// in glsl/lightcuts_walk.glsl.
 inline constexpr float kAbsoluteFloor = 1e-6f;
 
 // One group's cut, as TileCutter::cutRegion finds it; its entries are written apart.

@@ -1,6 +1,6 @@
 // Reads light tree nodes, and bounds the geometry of a node's box as seen from a point; the
 // layout is documented in bake/light_tree_layout.h, the colour codings in
-// bake/node_colour.h, the bounds in glsl/lighting_lightcuts.frag.
+// bake/node_colour.h, the bounds in glsl/lightcuts_walk.glsl.
 uniform usamplerBuffer uNodes;
 uniform ivec3 uTreeBase;    // first word of the directional, point and spot trees
 uniform ivec3 uTreeLeaves;  // their leaf counts (powers of two); 0: no such tree

@@ -1,6 +1,6 @@
 #pragma once
 // Lightcuts: the light trees of bake/light_tree.h in a node texture, and a per-pixel cut
-// through them in the fragment shader (glsl/lighting_lightcuts.frag documents the bounds
+// through them in the fragment shader (glsl/lightcuts_walk.glsl documents the bounds
 // and stopping rules).
 #include <memory>
 #include <string>
@@ -70,7 +70,7 @@ bool exactSums(const LightcutsSettings& settings, int lights);
 
 // llvmpipe ends a shader invocation's loops after 65,535 iterations in all, and a pass
 // over the trees takes up to 2 iterations per cut node: this limit leaves room for several
-// passes (glsl/lighting_lightcuts.frag).
+// passes (glsl/lightcuts_walk.glsl).
 inline constexpr int kMaxCutLimit = 8000;
 
 // Per-pixel cut statistics of a frame, over the covered pixels.
