@@ -295,6 +295,14 @@ static void shareExact(Part& part, const std::vector<int>& pixels, const RegionC
   part.entry.push_back(part.entries.size());
 }
 
+// Gives `pixels` the cut `r`, its entries from `entry` on.
+static void shareCut(Part& part, const std::vector<int>& pixels, const RegionCut& r,
+                     std::size_t entry, std::vector<std::uint32_t>& cutOfPixel) {
+  for (const int i : pixels) cutOfPixel[std::size_t(i)] = std::uint32_t(part.cuts.size());
+  part.cuts.push_back(r);
+  part.entry.push_back(entry);
+}
+
 // Cuts `square` and the groups it splits into, on one thread: the shared cuts go to `part`,
 // each pixel's cut number (within the part) to `cutOfPixel`.
 static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBufferPixels& px,
@@ -302,7 +310,6 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
                       std::vector<std::uint32_t>& cutOfPixel) {
   const int fine = std::min(kFinestTile, tileSize);
   std::vector<Group> todo;
-  std::vector<std::uint32_t> unused;
   const std::size_t firstCut = part.cuts.size();
   const std::vector<int> pixels = square.pixels;
   if (!square.pixels.empty()) todo.push_back(std::move(square));
@@ -317,14 +324,19 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
     if (group.size > tileSize) {  // a seed for the quarters
       if (tried) {
         auto next = std::make_shared<CutSeed>();
+        const std::size_t entry = part.entries.size();
         const RegionCut r =
-            cutter.cutRegion(work, g, rule, false, unused, group.seed.get(), next.get());
+            cutter.cutRegion(work, g, rule, false, part.entries, group.seed.get(), next.get());
         part.bounds += r.bounds;
         OwnCuts own{cutter, work, px, group, rule, part};
-        if (r.exact && !group.seed && !own.fit()) {  // hopeless from the top: exact at once
-          shareExact(part, group.pixels, r, cutOfPixel);
+        // Hopeless from the top (quarters would fill up too): an exact cut at once where it
+        // may be, else its full cut, unless its pixels' own cuts may meet the rule.
+        if ((r.exact || r.full) && !group.seed && !own.fit()) {
+          if (r.exact) shareExact(part, group.pixels, r, cutOfPixel);
+          if (r.full) shareCut(part, group.pixels, r, entry, cutOfPixel);
           continue;
         }
+        part.entries.resize(entry);
         // A full cut is a start too: a quarter whose cut then fills up starts over below.
         // Not under the total rule, whose quarters then fill up as well: they start from the
         // roots at once.
@@ -352,9 +364,7 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
       }
     }
     if (tried && !result.perPixel) {
-      for (const int i : group.pixels) cutOfPixel[std::size_t(i)] = std::uint32_t(part.cuts.size());
-      part.cuts.push_back(result);
-      part.entry.push_back(entry);
+      shareCut(part, group.pixels, result, entry, cutOfPixel);
       continue;
     }
     part.entries.resize(entry);

@@ -90,7 +90,9 @@ RegionCut TileCutter::cutRegion(CutWorkspace& work, const ShadingRegion& g, cons
   cut.flush();
   if (!refine(cut)) return cut.result;
   fold(cut);
-  emit(cut, entries, next);
+  // A seed's cut this far off under the total rule is no seed: its quarters start from the
+  // roots. Its entries are written instead, for its own pixels (cut_frame.cpp's cutSquare).
+  emit(cut, entries, cut.result.full ? nullptr : next);
   return cut.result;
 }
 
@@ -117,9 +119,10 @@ bool TileCutter::refine(Cut& cut) const {
           cut.result.full = true;
           break;
         }
-        // A seed this far off: its quarters would fill up too (cut_frame.cpp's cutSquare
-        // gives its pixels an exact cut at once where it may).
+        // A seed this far off: its quarters would fill up too. cut_frame.cpp's cutSquare gives
+        // its pixels an exact cut at once where it may, else this full cut.
         cut.result.exact = rule.exactFull;
+        cut.result.full = !rule.exactFull;
       }
       cut.result.perPixel = true;  // the tile's cut is full: its pixels cut for themselves
       if (!cut.wantSeed) return false;

@@ -187,7 +187,10 @@ struct RegionCut {
   // comes close to meeting the rule with a cut of its own (cuts/cut_frame.cpp probes them;
   // their pixels then walk their own). Its pixels that fail their check take it and count as
   // at the maximum: their own walks, of at most --max-cut (≤ kSharedCutLimit) nodes, would
-  // reach theirs too.
+  // reach theirs too. On a seed's cut where it may not be made exact (below): its entries are
+  // written instead of the seed, and a square without a seed whose probes cannot walk shares
+  // it whole (cut_frame.cpp, cutSquare), rather than each quarter finding a full cut of its
+  // own.
   bool full = false;
   // A full cut made exact (CutRule::exactFull): written as a full cut without entries, whose
   // pixels sum every light instead (glsl/lighting_lightcuts.frag, exactIfAtMax). On a seed's

@@ -9,6 +9,7 @@
 // specular ones in one loop with one shading term: the reference's loops, unrolled per type
 // with the BRDF, made llvmpipe take minutes to compile this shader.
 uniform int uLightCount;  // lights in the light texture
+uniform bool uExactSums;
 
 #define EXACT_E(type, k) (unitIrradiance(type, k, s.position, s.normal, unusedL) * texelFetch(uLights, kTexelsPerLight * (k) + 2).rgb)
 #define EXACT_SUM(begin, end, type) for (i = begin; i + 4 <= end; i += 4) { sum += (EXACT_E(type, i) + EXACT_E(type, i + 1)) + (EXACT_E(type, i + 2) + EXACT_E(type, i + 3)); } for (; i < end; ++i) sum += EXACT_E(type, i)

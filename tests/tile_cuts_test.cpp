@@ -187,6 +187,29 @@ TEST(TileCuts, UnderTheTotalRuleAHopelessCutIsSharedAndMarkedFull) {
   EXPECT_EQ(fullCuts(node), 0);
 }
 
+// Under the total rule, a square of seeds (twice the tile) whose cut is as hopeless as a full
+// cut to share shares it with all its pixels, instead of each quarter finding a full cut of
+// its own from the roots. Its bound holds at every pixel. (8,192 uniform lights, at most 2,000
+// nodes: 15 cuts, all full, one of them shared by a whole 32×32 square; before, each held
+// at most a 16×16 square.)
+TEST(TileCuts, AHopelessSquareOfSeedsSharesItsFullCut) {
+  const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 8192, 7);
+  const SyntheticGBuffer g;
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  const TileCuts cuts = cutter.cut(g.pixels(), 16, CutRule{0.02f, true, 2000}, 2);
+  std::map<std::uint32_t, int> pixelsOfCut;
+  for (const std::uint32_t cut : cuts.cutOfPixel) {
+    if (cut != kNoSharedCut) ++pixelsOfCut[cut];
+  }
+  int largest = 0;
+  for (const auto& [cut, pixels] : pixelsOfCut) largest = std::max(largest, pixels);
+  EXPECT_EQ(largest, 32 * 32);
+  const Checked c = checkCuts(g, lights, cuts);
+  EXPECT_EQ(c.sharedPixels, 3712);
+  EXPECT_EQ(c.failing, 0);
+  EXPECT_LE(c.worstOverBound, 1.0001);
+}
+
 // Past rule.texelsPerPixel, a square's (32×32 here) costliest cuts per pixel are dropped and
 // their pixels walk; the cuts kept are the ones found without the budget, renumbered.
 TEST(TileCuts, EachSquaresCutsStayWithinTheirTexelBudget) {
