@@ -303,6 +303,31 @@ static void shareCut(Part& part, const std::vector<int>& pixels, const RegionCut
   part.entry.push_back(entry);
 }
 
+// A square larger than the tile, `group` of shading points `g`: finds the cut its quarters
+// start from and splits it into them, or gives its pixels a cut at once where its quarters'
+// would fill up too.
+static void seedSquare(const TileCutter& cutter, CutWorkspace& work, const GBufferPixels& px,
+                       Group& group, const ShadingRegion& g, const CutRule& rule, Part& part,
+                       std::vector<Group>& todo, std::vector<std::uint32_t>& cutOfPixel) {
+  auto next = std::make_shared<CutSeed>();
+  const std::size_t entry = part.entries.size();
+  const RegionCut r =
+      cutter.cutRegion(work, g, rule, false, part.entries, group.seed.get(), next.get());
+  part.bounds += r.bounds;
+  OwnCuts own{cutter, work, px, group, rule, part};
+  // Hopeless from the top (quarters would fill up too): an exact cut at once where it may be,
+  // else its full cut, unless its pixels' own cuts may meet the rule.
+  if ((r.exact || r.full) && !group.seed && !own.fit()) {
+    if (r.exact) shareExact(part, group.pixels, r, cutOfPixel);
+    if (r.full) shareCut(part, group.pixels, r, entry, cutOfPixel);
+    return;
+  }
+  part.entries.resize(entry);
+  // A full cut is a start too: a quarter whose cut then fills up starts over below. Not under
+  // the total rule, whose quarters then fill up as well: they start from the roots at once.
+  quarters(px, group, todo, r.perPixel && rule.total ? nullptr : next);
+}
+
 // Cuts `square` and the groups it splits into, on one thread: the shared cuts go to `part`,
 // each pixel's cut number (within the part) to `cutOfPixel`.
 static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBufferPixels& px,
@@ -323,27 +348,10 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
     const bool tried = cone && g.cosSpread >= 0.0f;
     if (group.size > tileSize) {  // a seed for the quarters
       if (tried) {
-        auto next = std::make_shared<CutSeed>();
-        const std::size_t entry = part.entries.size();
-        const RegionCut r =
-            cutter.cutRegion(work, g, rule, false, part.entries, group.seed.get(), next.get());
-        part.bounds += r.bounds;
-        OwnCuts own{cutter, work, px, group, rule, part};
-        // Hopeless from the top (quarters would fill up too): an exact cut at once where it
-        // may be, else its full cut, unless its pixels' own cuts may meet the rule.
-        if ((r.exact || r.full) && !group.seed && !own.fit()) {
-          if (r.exact) shareExact(part, group.pixels, r, cutOfPixel);
-          if (r.full) shareCut(part, group.pixels, r, entry, cutOfPixel);
-          continue;
-        }
-        part.entries.resize(entry);
-        // A full cut is a start too: a quarter whose cut then fills up starts over below.
-        // Not under the total rule, whose quarters then fill up as well: they start from the
-        // roots at once.
-        quarters(px, group, todo, r.perPixel && rule.total ? nullptr : next);
-        continue;
+        seedSquare(cutter, work, px, group, g, rule, part, todo, cutOfPixel);
+      } else if (!surfaces(px, group, g, todo)) {
+        quarters(px, group, todo, group.seed);
       }
-      if (!surfaces(px, group, g, todo)) quarters(px, group, todo, group.seed);
       continue;
     }
     RegionCut result;
