@@ -319,7 +319,11 @@ static void seedSquare(const TileCutter& cutter, CutWorkspace& work, const GBuff
   // else its full cut, unless its pixels' own cuts may meet the rule.
   if ((r.exact || r.full) && !group.seed && !own.fit()) {
     if (r.exact) shareExact(part, group.pixels, r, cutOfPixel);
-    if (r.full) shareCut(part, group.pixels, r, entry, cutOfPixel);
+    if (r.full) {  // shared as a group's full cut is (not left to its pixels' own cuts)
+      RegionCut shared = r;
+      shared.perPixel = false;
+      shareCut(part, group.pixels, shared, entry, cutOfPixel);
+    }
     return;
   }
   part.entries.resize(entry);
