@@ -120,9 +120,13 @@ bool nodeBounds(int tree, Node n, bool wantLower, out vec3 upper, out vec3 lower
   return true;
 }
 
-// Once a complete pass is kept (keepPass), a later pass that fills the cut is given up at
-// once: its pixel falls back on the kept pass, so the rest of its walk would be thrown away.
-bool abandonFull = false;
+// A pass that fills the cut stops refining wherever the depth-first walk happens to be,
+// leaving the rest of the tree coarse; the previous pass, complete at a looser threshold,
+// is the better answer then. Both are counted as at the maximum.
+vec3 keptEstimate;
+int keptCut;
+bool keptComplete = false;  // until the first pass is kept
+float keptLargest;
 
 // The result of one pass over the trees.
 vec3 estimateSum;  // Σ of the cut's estimates (leaves exact)
@@ -198,7 +202,9 @@ void cutPass(float tau, int measure) {
           refine = true;
         } else {
           atMax = atMax || wanted;
-          if (atMax && abandonFull) return;  // discarded for the kept pass (fallBackIfFull)
+          // Once a complete pass is kept, one that fills the cut is given up at once: its
+          // pixel falls back on the kept pass (fallBackIfFull), so the rest would be thrown away.
+          if (atMax && keptComplete) return;
           if (bounded) {
             errorSum += error;
             largestMeasure = max(largestMeasure, maxOf(error));
@@ -227,20 +233,11 @@ void cutPass(float tau, int measure) {
   }
 }
 
-// A pass that fills the cut stops refining wherever the depth-first walk happens to be,
-// leaving the rest of the tree coarse; the previous pass, complete at a looser threshold,
-// is the better answer then. Both are counted as at the maximum.
-vec3 keptEstimate;
-int keptCut;
-bool keptComplete;
-float keptLargest;
-
 void keepPass() {
   keptEstimate = estimateSum;
   keptCut = cutSize;
   keptComplete = !atMax;
   keptLargest = largestMeasure;
-  abandonFull = keptComplete;
 }
 
 void fallBackIfFull() {
