@@ -123,11 +123,15 @@ bool materials(const GBufferPixels& px, const Group& group, std::vector<Group>& 
 // bounds above their estimates. Where pixels come that close, their walks' cuts were also the
 // closer where they reached the maximum: taking the group's full cut there instead put the
 // worst pixel of 16,384 clustered lights at ε = 0.005 (320×240) 3.5% off, against 0.35%.
+// The probes bound nodes as the walks do (CutRule::walkBounds): with the shared cuts' cone
+// bounds, probes under 65,536 street lights met the rule where the walks of 137,000 pixels
+// reached the maximum, at three times the frame's cost of their full cuts.
 bool ownCutsFit(const TileCutter& cutter, CutWorkspace& work, const GBufferPixels& px,
                 const Group& group, const CutRule& rule, Part& part) {
   CutRule own = rule;
   own.maxCut = std::min(rule.ownCut, rule.maxCut);
   own.shareFull = false;
+  own.walkBounds = true;
   std::vector<std::uint32_t> unused;
   const std::size_t n = group.pixels.size();
   for (const std::size_t k : {n / 2, std::size_t(0), n - 1, n / 4, 3 * n / 4}) {

@@ -64,7 +64,7 @@ RegionCut TileCutter::cutRegion(CutWorkspace& work, const ShadingRegion& g, cons
           next != nullptr,
           RegionTerms{g, centre, 0.5f * glm::length(g.pMax - g.pMin),
                       0.25f * glm::dot(g.pMax - g.pMin, g.pMax - g.pMin), float(colour_.slack),
-                      float(colour_.slackFloor), rule.total},
+                      float(colour_.slackFloor), rule.total, rule.walkBounds},
           RegionCut{},
           glm::vec3(0.0f),
           glm::vec3(0.0f),

@@ -7,9 +7,9 @@
 // bounds are those glsl/lightcuts_walk.glsl's nodeBounds puts on a node at one point, over a
 // region of shading points instead (a box of positions, a cone of normals), and for spot nodes
 // tighter: their cone factor bounded above and below (spotConeLanes), where the shader's walk
-// takes 1 or 0 and a lower bound of 0. Every branch is taken by every lane and its results
-// selected, so eight lanes and one give the same bits.
-// No include guard: included once per lane type.
+// takes 1 or 0 and a lower bound of 0 (as RegionTerms::walkBounds does). Every branch is taken by
+// every lane and its results selected, so eight lanes and one give the same bits. No include guard:
+// included once per lane type.
 
 // libstdc++'s std::clamp: (v < lo) ? lo : (hi < v) ? hi : v.
 MANYLIGHT_INLINE inline V clampLanes(V v, float lo, float hi) {
@@ -180,7 +180,8 @@ MANYLIGHT_INLINE inline void lobeLanes(const RegionTerms& r, const NodeLanes& in
       clampLanes(widenDown(vmax(boxLower(r.mirror.axis, box), sphereLower(mirrorSphere)), r.mirror),
                  0.0f, 1.0f);
   store(out.lobeTop + l, upperScale > 0.0f ? powUpperLanes(cosR, lobes.minExponent) : zero);
-  store(out.lobeBottom + l, lowerScale > 0.0f ? powLowerLanes(cosRLow, lobes.maxExponent) : zero);
+  const V bottom = lowerScale > 0.0f ? powLowerLanes(cosRLow, lobes.maxExponent) : zero;
+  store(out.lobeBottom + l, r.walkBounds ? zero : bottom);
   // The representative's direction from the centre against the mirror axis.
   const auto directional = load(in.tree + l) == 0.0f;
   V towards[3];
@@ -229,7 +230,7 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   // The node's upper (and under the total rule lower) bound per unit albedo; a spot's times
   // its cone factor's bounds.
   const V invRange2 = load(in.invRange2 + l), w2 = load(in.w2 + l);
-  const ConeFactor cone = spotConeLanes(r, in, l);
+  const ConeFactor cone = r.walkBounds ? ConeFactor{one, zero} : spotConeLanes(r, in, l);
   V gUp =
       directional ? one : windowLanes(d2Min, invRange2) / vmax(d2Min, splat(kMinDistanceSquared));
   gUp = spot ? gUp * cone.up : gUp;

@@ -111,6 +111,9 @@ struct CutRule {
   // the frame's squares.
   bool shareFull = true;
   int ownCut = 2000;
+  // Bounds as a pixel's own walk puts them (RegionTerms::walkBounds): set on the cuts that
+  // ask whether a group's pixels may walk (cut_frame.cpp's ownCutsFit), never on a shared cut.
+  bool walkBounds = false;
   // Under the total rule, such a full cut is replaced by an exact one (RegionCut::exact):
   // no entries, and its pixels sum every light. Set by the renderer where the scene has at
   // most LightcutsSettings::exactLimit lights, which the shader sums within its loop budget.

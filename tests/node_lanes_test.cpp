@@ -106,10 +106,11 @@ RegionTerms randomRegion(std::mt19937& rng, bool total) {
 TEST(NodeLanes, EightLanesGiveOneLanesResultsBitForBit) {
   SKIP_WITHOUT_EIGHT_LANES();
   std::mt19937 rng(7);
-  int unbounded = 0, dark = 0, leaves = 0, bounded = 0, lobeTops = 0, lobeBottoms = 0;
-  for (int round = 0; round < 4000; ++round) {
+  int unbounded = 0, dark = 0, leaves = 0, bounded = 0, lobeTops = 0, lobeBottoms = 0, walks = 0;
+  for (int round = 0; round < 5000; ++round) {
     const NodeLanes in = randomNodes(rng);
-    const RegionTerms region = randomRegion(rng, round % 2 == 1);
+    RegionTerms region = randomRegion(rng, round % 2 == 1);
+    region.walkBounds = round % 8 >= 6;  // a walk's bounds (CutRule::walkBounds)
     BoundLanes wide, one;
     std::memset(&wide, 0, sizeof wide);
     std::memset(&one, 0, sizeof one);
@@ -136,7 +137,10 @@ TEST(NodeLanes, EightLanesGiveOneLanesResultsBitForBit) {
       if (in.knownUnit[l] != 0.0f) {
         EXPECT_EQ(one.unit[l], in.unit[l]);
       }
-      if (region.g.lobes.on) {
+      if (region.walkBounds) {
+        ++walks;
+        EXPECT_EQ(one.lobeBottom[l], 0.0f);
+      } else if (region.g.lobes.on) {
         lobeTops += one.lobeTop[l] > 0.0f && one.lobeTop[l] < 1.0f ? 1 : 0;
         lobeBottoms += one.lobeBottom[l] > 0.0f && one.lobeBottom[l] < 1.0f ? 1 : 0;
       }
@@ -149,6 +153,7 @@ TEST(NodeLanes, EightLanesGiveOneLanesResultsBitForBit) {
   EXPECT_GT(bounded, 100);
   EXPECT_GT(lobeTops, 100);    // the lobes' powers, in [0, 1] (cuts/lane_powers.h)
   EXPECT_GT(lobeBottoms, 20);  // rarer: every cosine of the node must be positive
+  EXPECT_GT(walks, 1000);
 }
 
 // Nodes gathered into lanes by a transpose and one float at a time; lanes past the count
