@@ -1,6 +1,7 @@
-// A pixel that walks its own cut (glsl/lightcuts_walk.glsl) and fills it: its passes lower
-// their threshold up to 32× at a time, and one that fills the cut falls back on the pass
-// before, narrowed towards the finest threshold whose cut fits (narrowIfFull).
+// Pixels that walk their own cuts (glsl/lightcuts_walk.glsl): one that fills its cut falls
+// back on the pass before, narrowed towards the finest threshold whose cut fits (its passes
+// lower their threshold up to 32× at a time: narrowIfFull); and under the total rule a group's
+// pixels walk only where probes bounded as their walks are meet the rule.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -81,6 +82,40 @@ TEST(LightcutsWalks, AWalkThatFillsTheCutNarrowsItsThreshold) {
   EXPECT_LT(median, 0.05);
   EXPECT_LT(p90, 0.12);
   EXPECT_LT(e.back(), 0.35);
+}
+
+// Under the total rule a group's pixels walk their own cuts only where probes bounded as a
+// walk bounds (cuts/tile_cuts.h, CutRule::walkBounds: a spot node's cone factor 1, its lower
+// bound 0) meet the rule. Under street lights (spots pointing down) most walks cannot: with
+// every pixel walking, most reach the maximum. So the groups share their full cuts instead,
+// for fewer node bounds a pixel and errors no larger. Measured (96×72, 5,266 covered pixels),
+// 16,384 and 65,536 lights: 2,947 and 2,867 pixels share cuts, 1,277 and 1,714 node bounds a
+// pixel against 1,940 and 2,881 with every pixel walking. With the shared cuts' cone bounds the
+// probes met the rule: 1,499 and 1,264 shared, 2,177 and 3,138 node bounds a pixel.
+TEST(LightcutsWalks, PixelsWalkOnlyWhereProbesBoundedAsWalksMeetTheRule) {
+  for (const int count : {16384, 65536}) {
+    const Scene scene = litRoom(LightLayout::Street, count);
+    const Image reference = renderScene(scene, request(Method::Reference)).image;
+    RenderRequest r = request(Method::Lightcuts);
+    r.lightcuts.mode = ErrorMode::Total;
+    r.lightcuts.exactLimit = 0;  // no exact sums: pixels at the maximum keep their estimate
+    const RenderOutcome shared = renderScene(scene, r);
+    r.lightcuts.tileSize = 1;  // every pixel walks its own cut
+    const RenderOutcome walked = renderScene(scene, r);
+    const std::vector<double> s = errorsAtTheMaximum(shared, reference);
+    const std::vector<double> w = errorsAtTheMaximum(walked, reference);
+    ASSERT_FALSE(s.empty() || w.empty()) << count;
+    const double sharedP99 = s[s.size() * 99 / 100], walkedP99 = w[w.size() * 99 / 100];
+    const CutStats &cuts = shared.frame.cuts, &walks = walked.frame.cuts;
+    std::cout << count << " street lights: " << cuts.pixelsSharedCut << " of " << cuts.pixels
+              << " pixels share cuts, " << cuts.nodeEvaluations << " node bounds a pixel, p99 "
+              << sharedP99 << "; every pixel walking: " << walks.pixelsAtMaxCut
+              << " at the maximum, " << walks.nodeEvaluations << ", p99 " << walkedP99 << "\n";
+    EXPECT_GT(walks.pixelsAtMaxCut, walks.pixels / 2) << count;
+    EXPECT_GT(cuts.pixelsSharedCut, cuts.pixels / 2) << count;
+    EXPECT_LT(cuts.nodeEvaluations, 0.75 * walks.nodeEvaluations) << count;
+    EXPECT_LE(sharedP99, walkedP99) << count;
+  }
 }
 
 }  // namespace
