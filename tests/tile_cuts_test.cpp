@@ -26,11 +26,25 @@ namespace {
 
 using layout::floatOf;
 
+// How many of the shared cuts are full (RegionCut::full, kFullCutBit).
+int fullCuts(const TileCuts& cuts) {
+  int full = 0;
+  for (int c = 0; c < cuts.sharedCuts; ++c)
+    full += (cuts.texels.head[8 * c + 7] & kFullCutBit) != 0;
+  return full;
+}
+
+// The total rule's shared cuts of `lights` over `g`, on two threads.
+TileCuts totalRuleCuts(const SyntheticGBuffer& g, const std::vector<Light>& lights, float epsilon,
+                       int tileSize, int maxCut) {
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  return cutter.cut(g.pixels(), tileSize, CutRule{epsilon, true, maxCut}, 2);
+}
+
 Checked checkTotalRule(const std::vector<Light>& lights, float epsilon, int tileSize,
                        int maxCut = 8000) {
   const SyntheticGBuffer g;
-  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
-  return checkCuts(g, lights, cutter.cut(g.pixels(), tileSize, CutRule{epsilon, true, maxCut}, 2));
+  return checkCuts(g, lights, totalRuleCuts(g, lights, epsilon, tileSize, maxCut));
 }
 
 TEST(TileCuts, SharedCutsStayWithinTheirBoundsAtEveryPixel) {
@@ -169,12 +183,6 @@ TEST(TileCuts, UnderTheTotalRuleAHopelessCutIsSharedAndMarkedFull) {
   const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
   const SyntheticGBuffer g;
   const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
-  auto fullCuts = [](const TileCuts& cuts) {
-    int full = 0;
-    for (int c = 0; c < cuts.sharedCuts; ++c)
-      full += (cuts.texels.head[8 * c + 7] & kFullCutBit) != 0;
-    return full;
-  };
   const TileCuts total = cutter.cut(g.pixels(), 16, CutRule{0.02f, true, 400}, 2);
   const Checked c = checkCuts(g, lights, total);
   EXPECT_GT(c.sharedPixels, 2 * c.perPixel);
@@ -220,14 +228,10 @@ TEST(TileCuts, AHopelessSquareOfSeedsSharesItsFullCut) {
 TEST(TileCuts, ProbesBoundSpotsAsAWalkDoes) {
   const std::vector<Light> lights = layoutLights(LightLayout::Street, 16384, 7);
   const SyntheticGBuffer g;
-  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
-  const TileCuts cuts = cutter.cut(g.pixels(), 16, CutRule{0.02f, true, 2000}, 2);
-  int full = 0;
-  for (int c = 0; c < cuts.sharedCuts; ++c)
-    full += (cuts.texels.head[8 * c + 7] & kFullCutBit) != 0;
+  const TileCuts cuts = totalRuleCuts(g, lights, 0.02f, 16, 2000);
   const Checked c = checkCuts(g, lights, cuts);
   EXPECT_GT(c.sharedPixels, 2 * c.perPixel);
-  EXPECT_GT(full, 0);
+  EXPECT_GT(fullCuts(cuts), 0);
   EXPECT_EQ(c.failing, 0);
   EXPECT_LE(c.worstOverBound, 1.0001);
 }
