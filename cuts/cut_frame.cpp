@@ -123,9 +123,10 @@ bool materials(const GBufferPixels& px, const Group& group, std::vector<Group>& 
 // bounds above their estimates. Where pixels come that close, their walks' cuts were also the
 // closer where they reached the maximum: taking the group's full cut there instead put the
 // worst pixel of 16,384 clustered lights at ε = 0.005 (320×240) 3.5% off, against 0.35%.
-// The probes bound nodes as the walks do (CutRule::walkBounds): with the shared cuts' cone
-// bounds, probes under 65,536 street lights met the rule where the walks of 137,000 pixels
-// reached the maximum, at three times the frame's cost of their full cuts.
+// The probes bound nodes as the walks do (CutRule::walkBounds: no lower bound on a lobe), and
+// the walks bound spot nodes' cone factors as the shared cuts do (glsl/lightcuts_walk.glsl's
+// spotConeFactor): with the walks' cone factor at 1 and no lower bound, probes under 65,536
+// street lights met the rule where the walks of 137,000 pixels reached the maximum.
 bool ownCutsFit(const TileCutter& cutter, CutWorkspace& work, const GBufferPixels& px,
                 const Group& group, const CutRule& rule, Part& part) {
   CutRule own = rule;

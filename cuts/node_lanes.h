@@ -52,9 +52,9 @@ struct RegionTerms {
   float h2;                     // its square, as 0.25 · |pMax − pMin|²
   float slackRate, slackFloor;  // node colours' decoding slack (NodeColourCoder)
   bool total;                   // the total rule: lower bounds too
-  // Spot nodes' cone factor taken as 1 (where spotReachesLanes) with a lower bound of 0, and
-  // lobes' lower bounds 0: the bounds of glsl/lightcuts_walk.glsl's nodeBounds, for cuts that
-  // predict a pixel's own walk (CutRule::walkBounds).
+  // Lobes' lower bounds 0: the bounds of glsl/lightcuts_walk.glsl's nodeBounds, which bounds
+  // a Phong lobe from above only, for cuts that predict a pixel's own walk
+  // (CutRule::walkBounds).
   bool walkBounds = false;
   // Where g.lobes.on: the cone of the group's mirror directions (g.lobes' axis and spread, as
   // a region's normals), about which BoundLanes::lobeTop and lobeBottom are taken.

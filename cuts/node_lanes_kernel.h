@@ -4,12 +4,12 @@
 // with std::min and std::max's semantics ((b < a) ? b : a and (a < b) ? b : a), and on the
 // bits of floats: vexponent (a normal float's unbiased exponent, as a float), vmantissa (its
 // mantissa with exponent 0, in [1, 2)) and vexp2Integer (2^k for integral k in [−126, 127]). The
-// bounds are those glsl/lightcuts_walk.glsl's nodeBounds puts on a node at one point, over a
-// region of shading points instead (a box of positions, a cone of normals), and for spot nodes
-// tighter: their cone factor bounded above and below (spotConeLanes), where the shader's walk
-// takes 1 or 0 and a lower bound of 0 (as RegionTerms::walkBounds does). Every branch is taken by
-// every lane and its results selected, so eight lanes and one give the same bits. No include guard:
-// included once per lane type.
+// bounds are those glsl/lightcuts_walk.glsl's nodeBounds puts on a node at one point (a spot
+// node's cone factor bounded above and below: spotConeLanes, its spotConeFactor), over a
+// region of shading points instead (a box of positions, a cone of normals), and for specular
+// lobes with a lower bound too, which the walk takes as 0 (as RegionTerms::walkBounds does).
+// Every branch is taken by every lane and its results selected, so eight lanes and one give
+// the same bits. No include guard: included once per lane type.
 
 // libstdc++'s std::clamp: (v < lo) ? lo : (hi < v) ? hi : v.
 MANYLIGHT_INLINE inline V clampLanes(V v, float lo, float hi) {
@@ -230,7 +230,7 @@ MANYLIGHT_INLINE inline void nodeBoundLanes(const RegionTerms& r, const NodeLane
   // The node's upper (and under the total rule lower) bound per unit albedo; a spot's times
   // its cone factor's bounds.
   const V invRange2 = load(in.invRange2 + l), w2 = load(in.w2 + l);
-  const ConeFactor cone = r.walkBounds ? ConeFactor{one, zero} : spotConeLanes(r, in, l);
+  const ConeFactor cone = spotConeLanes(r, in, l);
   V gUp =
       directional ? one : windowLanes(d2Min, invRange2) / vmax(d2Min, splat(kMinDistanceSquared));
   gUp = spot ? gUp * cone.up : gUp;

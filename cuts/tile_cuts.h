@@ -329,6 +329,11 @@ class TileCutter {
   // Keeps `packed`, the trees of `lights`, and decodes its nodes as cuts first reach them.
   TileCutter(PackedTrees packed, const std::vector<Light>& lights);
 
+  // The spot tree's cones (SpotCone) for a pixel's own walk (glsl/lightcuts_walk.glsl's
+  // spotConeFactor): per node, (spread's cosine, upScale, upOffset, lowScale), (lowOffset,
+  // lowInvRange2, 0, 0); empty without spots.
+  std::vector<float> spotConeTexels() const;
+
   // Cuts for every tile of the frame, on `threads` threads; only for the pixels marked in
   // `only` (one byte per pixel) when it is given. Each square of the frame's seeds (of
   // tileSize << kSeedLevels pixels) keeps its cuts' entries within rule.texelsPerPixel texels

@@ -144,6 +144,17 @@ void TileCutter::findSpotCones() {
   }
 }
 
+std::vector<float> TileCutter::spotConeTexels() const {
+  std::vector<float> texels;
+  texels.reserve(8 * spotCones_.size());
+  for (const SpotCone& c : spotCones_) {
+    for (const float v :
+         {c.spreadCos, c.upScale, c.upOffset, c.lowScale, c.lowOffset, c.lowInvRange2, 0.0f, 0.0f})
+      texels.push_back(v);
+  }
+  return texels;
+}
+
 void TileCutter::decodeBlock(int tree, std::size_t block) const {
   std::atomic<std::uint8_t>& state = state_[tree][block];
   std::uint8_t raw = kRaw;

@@ -6,9 +6,10 @@
 // shading times the node's total intensity; a leaf is exact.
 //
 // Bounds of a node's contribution at a surface point p (no shadows, so conservative):
-//   upper = I · (albedo/π + ks·(n+2)/(2π)·cosᵣ⁺ⁿ) · cos⁺ · window(d⁻)/d⁻²   [· 0 if the spot
-//           cone cannot reach p]
-//   lower = I · albedo/π · cos⁻ · window⁻(d⁺)/d⁺²   (0 for spot nodes)
+//   upper = I · (albedo/π + ks·(n+2)/(2π)·cosᵣ⁺ⁿ) · cos⁺ · window(d⁻)/d⁻²   [· a spot
+//           node's cone factor's upper bound, 0 where its cone cannot reach p]
+//   lower = I · albedo/π · cos⁻ · window⁻(d⁺)/d⁺²   [· a spot node's cone factor's lower
+//           bound (spotConeFactor)]
 // with d⁻, d⁺ the nearest and farthest distances from p to the node's box, cos⁺ ≥ the
 // largest and cos⁻ ≤ the smallest cosine between the normal and a direction into the box
 // (cosᵣ⁺ likewise about the mirror direction), window⁻ using the smallest range. The window
@@ -80,7 +81,43 @@ vec3 unitTerm(int tree, int rep) {
 // Upper and lower bounds of node n's contribution (see the top of this file); the lower one
 // only when `wantLower` (the node rule needs none). Returns false when the upper bound is
 // unbounded (p inside the box).
-bool nodeBounds(int tree, Node n, bool wantLower, out vec3 upper, out vec3 lower) {
+// A spot node's cones, found by the CPU (cuts/tile_cuts.h, TileCutter::spotConeTexels): per
+// node of the spot tree two texels, (cos of its lights' axes' spread about its axis, the
+// widest cone's smoothstep scale and offset, the narrowest's scale), (the narrowest's offset,
+// the largest 1/range², 0, 0).
+uniform samplerBuffer uSpotCones;
+
+// Bounds on the cone factor smoothstep(clamp(cos · scale + offset)) of any light of spot
+// node n (node i of the spot tree) at p: above (.x) and below (.y), and the largest 1/range²
+// of its lights (.z). cuts/lane_cones.h's spotConeLanes for a region of one point, which
+// says why they hold: the cosine between a light's axis and its direction to p lies within
+// [cos min(φ + α + σ, π), cos max(φ − α − σ, 0)], φ the angle between the node's axis and
+// the direction from its box's centre to p, α the box's angular radius from p, σ the spread.
+vec3 spotConeFactor(Node n, int i, vec3 p) {
+  vec4 a = texelFetch(uSpotCones, 2 * i);
+  vec4 b = texelFetch(uSpotCones, 2 * i + 1);
+  vec3 toP = p - 0.5 * (n.boxMin + n.boxMax);
+  float reach = 0.5 * length(n.boxMax - n.boxMin);
+  float d = length(toP);
+  // Within 1.0001 · reach the angular radius is taken as 90° (spotConeLanes says why).
+  bool inside = d <= reach * 1.0001;
+  float sinA = min(reach / max(d, 1e-30), 1.0);
+  float cosA = sqrt(max(1.0 - sinA * sinA, 0.0));
+  float cosS = a.x;
+  float sinS = sqrt(max(1.0 - cosS * cosS, 0.0));
+  float cosB = cosA * cosS - sinA * sinS;  // β = α + σ; past π where its sine is negative
+  float sinB = sinA * cosS + cosA * sinS;
+  float cosF = clamp(dot(n.axis, toP) / max(d, 1e-30), -1.0, 1.0);
+  float sinF = sqrt(max(1.0 - cosF * cosF, 0.0));
+  bool wide = inside || sinB < 0.0;
+  float top = wide || cosF >= cosB ? 1.0 : min(cosF * cosB + sinF * sinB + 1e-5, 1.0);
+  float bottom = wide || cosB <= -cosF ? -1.0 : max(cosF * cosB - sinF * sinB - 1e-5, -1.0);
+  float up = clamp(top * a.y + a.z, 0.0, 1.0);
+  float low = clamp(bottom * a.w + b.x, 0.0, 1.0);
+  return vec3(up * up * (3.0 - 2.0 * up), low * low * (3.0 - 2.0 * low), b.y);
+}
+
+bool nodeBounds(int tree, int i, Node n, bool wantLower, out vec3 upper, out vec3 lower) {
   ++nodeEvaluations;
   upper = vec3(0.0);
   lower = vec3(0.0);
@@ -97,8 +134,13 @@ bool nodeBounds(int tree, Node n, bool wantLower, out vec3 upper, out vec3 lower
   float gUp = 1.0, gLow = wantLower ? 1.0 : 0.0;
   if (tree != 0) {
     gUp = window(d2Min, n.invRange2) / max(d2Min, kMinDistanceSquared);
-    gLow = tree == 2 || !wantLower ? 0.0 : window(d2Max, n.w2) / max(d2Max, kMinDistanceSquared);
-    if (tree == 2 && !spotMayReach(n, p)) return true;
+    gLow = !wantLower ? 0.0 : window(d2Max, n.w2) / max(d2Max, kMinDistanceSquared);
+    if (tree == 2) {  // a spot node's w2 is its cone's cos Θ, not a range
+      if (!spotMayReach(n, p)) return true;
+      vec3 cone = spotConeFactor(n, i, p);
+      gUp *= cone.x;
+      gLow = !wantLower ? 0.0 : cone.y * window(d2Max, cone.z) / max(d2Max, kMinDistanceSquared);
+    }
   }
   vec3 m = s.albedo / kPi;
 #ifdef HAS_SPECULAR
@@ -194,7 +236,7 @@ void cutPass(float tau, int measure) {
           wanted = dot(toCentre, toCentre) < radius * radius;
         } else {
           vec3 upper, lower;
-          bounded = nodeBounds(tree, n, measure == 1, upper, lower);
+          bounded = nodeBounds(tree, i, n, measure == 1, upper, lower);
           error = measure == 0 ? upper : upper - lower;
           wanted = !bounded || maxOf(error) > tau;
         }

@@ -27,6 +27,10 @@ LightcutsMethod::LightcutsMethod(PackedTrees packed, const std::vector<Light>& l
   layout_.colour = packed.colour;
   // The tile cutter keeps the words, to decode the nodes its cuts reach.
   if (!distance) tileCutter_ = std::make_unique<TileCutter>(std::move(packed), lights);
+  std::vector<float> cones = tileCutter_ ? tileCutter_->spotConeTexels() : std::vector<float>{};
+  if (cones.empty()) cones.assign(4, 0.0f);  // no spots: keep the sampler complete
+  spotCones_ = gl::uploadTextureBuffer(cones.data(), cones.size() / 4, GL_RGBA32F,
+                                       "spot cones of " + std::to_string(cones.size()) + " floats");
 
   if (tileCutter_) {  // sized once; each frame's cut numbers replace the last
     glBindTexture(GL_TEXTURE_2D, cutOfPixel_.id());
@@ -98,6 +102,9 @@ void LightcutsMethod::light(const GpuScene& scene, const GBuffer& gbuffer, const
     glActiveTexture(GL_TEXTURE5);
     glBindTexture(GL_TEXTURE_BUFFER, nodes_.texture.id());
     glUniform1i(shader.uniform("uNodes"), 5);
+    glActiveTexture(GL_TEXTURE8);
+    glBindTexture(GL_TEXTURE_BUFFER, spotCones_.texture.id());
+    glUniform1i(shader.uniform("uSpotCones"), 8);
     glUniform3i(shader.uniform("uTreeBase"), layout_.base[0], layout_.base[1], layout_.base[2]);
     glUniform3i(shader.uniform("uTreeLeaves"), layout_.leaves[0], layout_.leaves[1],
                 layout_.leaves[2]);

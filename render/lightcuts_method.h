@@ -125,6 +125,7 @@ class LightcutsMethod {
 
   PackedTrees layout_;  // bases, leaf counts, colour coding (no words: the tile cutter's)
   gl::TextureBuffer nodes_;
+  gl::TextureBuffer spotCones_;  // TileCutter::spotConeTexels, for the walks' spot bounds
   std::unique_ptr<TileCutter> tileCutter_;   // null for the distance criterion
   mutable std::unique_ptr<CellCuts> cells_;  // made by the first frame with keepCuts
   mutable gl::TextureBuffer tileCuts_;       // this frame's (cuts/tile_cuts.h), storage kept

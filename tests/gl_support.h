@@ -9,6 +9,11 @@ namespace manylight::testing {
 // The process's GL context (auto backend), created on first use.
 gl::Context& context();
 
+// A render compared with the reference: both sum in float, so a pixel may differ by this share
+// of itself on top of ε (measured rounding: below 1e-5), and by the shader's absolute floor
+// for near-black pixels (kAbsoluteFloor, cuts/tile_cuts.h).
+inline constexpr double kFloatSlack = 1e-4;
+
 // The largest channel difference between two frames of one size over the larger of their peaks.
 double largestDifference(const Image& a, const Image& b);
 

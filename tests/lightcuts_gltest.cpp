@@ -21,9 +21,6 @@ namespace manylight::testing {
 namespace {
 
 constexpr int kWidth = 96, kHeight = 72;
-// Both methods sum in float: allow 1e-4 of the pixel on top of ε (measured rounding: below
-// 1e-5), and the shader's absolute floor for near-black pixels.
-constexpr double kFloatSlack = 1e-4;
 // Large enough that the total rule converges on nearly every pixel of these scenes.
 constexpr int kMaxCut = 8000;
 

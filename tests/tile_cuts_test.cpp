@@ -218,24 +218,6 @@ TEST(TileCuts, AHopelessSquareOfSeedsSharesItsFullCut) {
   EXPECT_LE(c.worstOverBound, 1.0001);
 }
 
-// Under the total rule, a group's pixels walk cuts of their own only where its probed pixels'
-// cuts, bounded as a walk bounds them (CutRule::walkBounds: a spot node's cone factor 1 and
-// its lower bound 0, as glsl/lightcuts_walk.glsl's nodeBounds), come near the rule. With the
-// shared cuts' tighter cone bounds, the probes of a floor under street lights met the rule
-// where the walks could not, and every pixel walked to its maximum. (16,384 street lights
-// pointing down, at most 2,000 nodes: 2,678 pixels share 9 cuts, all full, and 1,034 walk;
-// with the shared cuts' bounds all 3,712 walked.)
-TEST(TileCuts, ProbesBoundSpotsAsAWalkDoes) {
-  const std::vector<Light> lights = layoutLights(LightLayout::Street, 16384, 7);
-  const SyntheticGBuffer g;
-  const TileCuts cuts = totalRuleCuts(g, lights, 0.02f, 16, 2000);
-  const Checked c = checkCuts(g, lights, cuts);
-  EXPECT_GT(c.sharedPixels, 2 * c.perPixel);
-  EXPECT_GT(fullCuts(cuts), 0);
-  EXPECT_EQ(c.failing, 0);
-  EXPECT_LE(c.worstOverBound, 1.0001);
-}
-
 // Past rule.texelsPerPixel, a square's (32×32 here) costliest cuts per pixel are dropped and
 // their pixels walk; the cuts kept are the ones found without the budget, renumbered.
 TEST(TileCuts, EachSquaresCutsStayWithinTheirTexelBudget) {
