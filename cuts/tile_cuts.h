@@ -330,8 +330,9 @@ class TileCutter {
   TileCutter(PackedTrees packed, const std::vector<Light>& lights);
 
   // The spot tree's cones (SpotCone) for a pixel's own walk (glsl/lightcuts_walk.glsl's
-  // spotConeFactor): per node, (spread's cosine, upScale, upOffset, lowScale), (lowOffset,
-  // lowInvRange2, 0, 0); empty without spots.
+  // spotConeFactor): per internal node (the first leaves − 1), (spread's cosine, upScale,
+  // upOffset, lowScale), (lowOffset, lowInvRange2, 0, 0); empty without spots. 32 MiB at
+  // 1,048,576 spots, against 112 MiB for the spot tree's nodes.
   std::vector<float> spotConeTexels() const;
 
   // Cuts for every tile of the frame, on `threads` threads; only for the pixels marked in

@@ -145,9 +145,12 @@ void TileCutter::findSpotCones() {
 }
 
 std::vector<float> TileCutter::spotConeTexels() const {
+  // Internal nodes only: they come first in the implicit layout, and a walk bounds no leaf.
+  const std::size_t internal = leaves_[2] > 0 ? std::size_t(leaves_[2]) - 1 : 0;
   std::vector<float> texels;
-  texels.reserve(8 * spotCones_.size());
-  for (const SpotCone& c : spotCones_) {
+  texels.reserve(8 * internal);
+  for (std::size_t i = 0; i < internal; ++i) {
+    const SpotCone& c = spotCones_[i];
     for (const float v :
          {c.spreadCos, c.upScale, c.upOffset, c.lowScale, c.lowOffset, c.lowInvRange2, 0.0f, 0.0f})
       texels.push_back(v);

@@ -82,7 +82,7 @@ vec3 unitTerm(int tree, int rep) {
 // only when `wantLower` (the node rule needs none). Returns false when the upper bound is
 // unbounded (p inside the box).
 // A spot node's cones, found by the CPU (cuts/tile_cuts.h, TileCutter::spotConeTexels): per
-// node of the spot tree two texels, (cos of its lights' axes' spread about its axis, the
+// internal node of the spot tree two texels, (cos of its lights' axes' spread about its axis, the
 // widest cone's smoothstep scale and offset, the narrowest's scale), (the narrowest's offset,
 // the largest 1/range², 0, 0).
 uniform samplerBuffer uSpotCones;
