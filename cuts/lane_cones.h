@@ -54,9 +54,9 @@ MANYLIGHT_INLINE inline ConeFactor spotConeLanes(const RegionTerms& r, const Nod
       0.5f * vsqrt(extent[0] * extent[0] + extent[1] * extent[1] + extent[2] * extent[2]) +
       r.halfDiagonal;
   const V d = vsqrt(toP[0] * toP[0] + toP[1] * toP[1] + toP[2] * toP[2]);
-  // Within 1.0001 · reach the angular radius is taken as 90°: beyond it cos α ≥ 0.014, and
-  // its float error (about 1e-7 / cos α) stays within the 1e-5 added to the cosines below.
-  const auto inside = d <= reach * 1.0001f;
+  // Within kSpotReachSlack · reach the angular radius is taken as 90°: beyond it cos α ≥ 0.014, and
+  // its float error (about 1e-7 / cos α) stays within kSpotCosineMargin, added below.
+  const auto inside = d <= reach * kSpotReachSlack;
   const V sinA = vmin(reach / d, one), cosA = vsqrt(vmax(1.0f - sinA * sinA, zero));
   const V cosS = load(in.spreadCos + l), sinS = vsqrt(vmax(1.0f - cosS * cosS, zero));
   // β = α + σ; past π where its sine is negative.
@@ -66,8 +66,8 @@ MANYLIGHT_INLINE inline ConeFactor spotConeLanes(const RegionTerms& r, const Nod
   const V sinF = vsqrt(vmax(1.0f - cosF * cosF, zero));
   const auto wide = inside || sinB < 0.0f;
   V top = cosF * cosB + sinF * sinB, bottom = cosF * cosB - sinF * sinB;
-  top = wide || cosF >= cosB ? one : vmin(top + 1e-5f, one);
-  bottom = wide || cosB <= -cosF ? splat(-1.0f) : vmax(bottom - 1e-5f, splat(-1.0f));
+  top = wide || cosF >= cosB ? one : vmin(top + kSpotCosineMargin, one);
+  bottom = wide || cosB <= -cosF ? splat(-1.0f) : vmax(bottom - kSpotCosineMargin, splat(-1.0f));
   const V tUp = clampLanes(top * load(in.upScale + l) + load(in.upOffset + l), 0.0f, 1.0f);
   const V tLow = clampLanes(bottom * load(in.lowScale + l) + load(in.lowOffset + l), 0.0f, 1.0f);
   return {tUp * tUp * (3.0f - 2.0f * tUp), tLow * tLow * (3.0f - 2.0f * tLow)};

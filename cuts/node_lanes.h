@@ -44,6 +44,13 @@ inline constexpr int kNodeRows = 32;
 // transpose, where `wide` and the CPU has AVX2.
 void gatherNodes(const float* const nodes[kLanes], int count, NodeLanes& out, bool wide = true);
 
+// A spot node's cone factor bounds (cuts/lane_cones.h's spotConeLanes, and its one-point form
+// in glsl/lightcuts_walk.glsl, spotConeFactor): within kSpotReachSlack times the bounding
+// spheres' reach the angular radius is taken as 90°, and the cosines' bounds are widened by
+// kSpotCosineMargin (lane_cones.h says why the two go together).
+inline constexpr float kSpotReachSlack = 1.0001f;
+inline constexpr float kSpotCosineMargin = 1e-5f;
+
 // What the bounds need of the group of shading points and of the rule.
 struct RegionTerms {
   ShadingRegion g;

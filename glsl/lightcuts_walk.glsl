@@ -99,8 +99,8 @@ vec3 spotConeFactor(Node n, int i, vec3 p) {
   vec3 toP = p - 0.5 * (n.boxMin + n.boxMax);
   float reach = 0.5 * length(n.boxMax - n.boxMin);
   float d = length(toP);
-  // Within 1.0001 · reach the angular radius is taken as 90° (spotConeLanes says why).
-  bool inside = d <= reach * 1.0001;
+  // Within kSpotReachSlack · reach the angular radius is taken as 90° (spotConeLanes says why).
+  bool inside = d <= reach * kSpotReachSlack;
   float sinA = min(reach / max(d, 1e-30), 1.0);
   float cosA = sqrt(max(1.0 - sinA * sinA, 0.0));
   float cosS = a.x;
@@ -110,8 +110,9 @@ vec3 spotConeFactor(Node n, int i, vec3 p) {
   float cosF = clamp(dot(n.axis, toP) / max(d, 1e-30), -1.0, 1.0);
   float sinF = sqrt(max(1.0 - cosF * cosF, 0.0));
   bool wide = inside || sinB < 0.0;
-  float top = wide || cosF >= cosB ? 1.0 : min(cosF * cosB + sinF * sinB + 1e-5, 1.0);
-  float bottom = wide || cosB <= -cosF ? -1.0 : max(cosF * cosB - sinF * sinB - 1e-5, -1.0);
+  float top = wide || cosF >= cosB ? 1.0 : min(cosF * cosB + sinF * sinB + kSpotCosineMargin, 1.0);
+  float bottom =
+      wide || cosB <= -cosF ? -1.0 : max(cosF * cosB - sinF * sinB - kSpotCosineMargin, -1.0);
   float up = clamp(top * a.y + a.z, 0.0, 1.0);
   float low = clamp(bottom * a.w + b.x, 0.0, 1.0);
   return vec3(up * up * (3.0 - 2.0 * up), low * low * (3.0 - 2.0 * low), b.y);

@@ -130,6 +130,8 @@ std::string layoutPrelude() {
   out += constLine("int", "kFarFieldTexels", std::to_string(kFarFieldTexels));
   out += constLine("uint", "kNoSharedCut", std::to_string(kNoSharedCut) + "u");
   out += constLine("float", "kAbsoluteFloor", floatLiteral(kAbsoluteFloor));
+  out += constLine("float", "kSpotReachSlack", floatLiteral(kSpotReachSlack));
+  out += constLine("float", "kSpotCosineMargin", floatLiteral(kSpotCosineMargin));
   out += constLine("int", "kNodeWords", std::to_string(layout::kNodeWords));
   out += constLine("int", "kSpotNodeWords", std::to_string(layout::kSpotNodeWords));
   out += constLine("int", "kCutStatsOwnCut", std::to_string(kCutStatsOwnCut));
