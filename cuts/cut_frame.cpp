@@ -343,6 +343,8 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
                       Group square, int tileSize, const CutRule& rule, Part& part,
                       std::vector<std::uint32_t>& cutOfPixel) {
   const int fine = std::min(kFinestTile, tileSize);
+  CutRule nearFinest = rule;  // for groups whose quarters are of the finest size
+  nearFinest.splitScale = kNearFinestSplit;
   std::vector<Group> todo;
   const std::size_t firstCut = part.cuts.size();
   const std::vector<int> pixels = square.pixels;
@@ -365,8 +367,10 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
     }
     RegionCut result;
     const std::size_t entry = part.entries.size();
-    OwnCuts own{cutter, work, px, group, rule, part};
-    if (tried) result = groupCut(own, g, group.size <= fine);
+    const bool finest = group.size <= fine;
+    OwnCuts own{cutter, work, px, group, !finest && group.size <= 2 * fine ? nearFinest : rule,
+                part};
+    if (tried) result = groupCut(own, g, finest);
     if (tried && own.farOff(result)) {  // split into its surfaces first, as any group alone
       const bool split = g.cosSpread < kSurfaceSpread && surfaces(px, group, g, todo);
       if (split || own.fit()) {

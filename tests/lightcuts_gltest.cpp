@@ -110,7 +110,7 @@ const Case kCases[] = {
     {"wide_intensities_2000",  LightLayout::WideIntensities, 2000, false,
      {0.0213, 0.0139, 0.00358, 455},  {0.134, 0.0229, 0.00615, 488}},
     {"far_1000",               LightLayout::Far,             1000, false,
-     {0.0116, 0.00722, 0.00256, 489}, {0.364, 0.0428, 0.00345, 120}},
+     {0.0194, 0.00722, 0.00256, 491}, {0.364, 0.0428, 0.00345, 120}},
     {"mixed_3000",             LightLayout::Mixed,           3000, false,
      {0.0672, 0.0368, 0.0123, 631},  {0.186, 0.0576, 0.0148, 806}},
     {"count_1",                LightLayout::Mixed,           1,    false,
