@@ -257,7 +257,8 @@ TEST(TileCuts, EachSquaresCutsStayWithinTheirTexelBudget) {
 }
 
 // Groups larger than the finest split once their cut would exceed kSplitCut entries at
-// ε = kSplitError, proportionally more at smaller ε, never past the maximum.
+// ε = kSplitError, proportionally more at smaller ε, never past the maximum; groups one level
+// above the finest (CutRule::splitScale, kNearFinestSplit) at twice that.
 TEST(TileCuts, GroupsSplitAtLargerCutsForSmallerErrors) {
   EXPECT_EQ(splitCut(CutRule{0.02f, false, 2000}), 1000);
   EXPECT_EQ(splitCut(CutRule{0.05f, false, 2000}), 1000);
@@ -265,6 +266,13 @@ TEST(TileCuts, GroupsSplitAtLargerCutsForSmallerErrors) {
   EXPECT_EQ(splitCut(CutRule{0.01f, false, 4000}), 2000);
   EXPECT_EQ(splitCut(CutRule{0.005f, false, 4000}), 4000);
   EXPECT_EQ(splitCut(CutRule{0.005f, false, 1500}), 1500);
+  CutRule nearFinest{0.02f, false, 8000};
+  nearFinest.splitScale = kNearFinestSplit;
+  EXPECT_EQ(splitCut(nearFinest), 2000);
+  nearFinest.error = 0.005f;
+  EXPECT_EQ(splitCut(nearFinest), 8000);
+  nearFinest.maxCut = 3000;
+  EXPECT_EQ(splitCut(nearFinest), 3000);
 }
 
 // The covered pixels of the square of `size` at (x0, y0).
