@@ -343,8 +343,8 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
                       Group square, int tileSize, const CutRule& rule, Part& part,
                       std::vector<std::uint32_t>& cutOfPixel) {
   const int fine = std::min(kFinestTile, tileSize);
-  CutRule nearFinest = rule;  // for groups whose quarters are of the finest size
-  nearFinest.splitScale = kNearFinestSplit;
+  CutRule wider = rule;  // for groups whose quarters are of the finest size, or lobe-dominated
+  wider.splitScale = kNearFinestSplit;
   std::vector<Group> todo;
   const std::size_t firstCut = part.cuts.size();
   const std::vector<int> pixels = square.pixels;
@@ -368,8 +368,10 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
     RegionCut result;
     const std::size_t entry = part.entries.size();
     const bool finest = group.size <= fine;
-    OwnCuts own{cutter, work, px, group, !finest && group.size <= 2 * fine ? nearFinest : rule,
-                part};
+    // Past materials(), a group's pixels are all lobe-dominated or none.
+    const bool lobes = px.albedo && px.specular && lobeDominated(px, std::size_t(group.pixels[0]));
+    const bool wide = !finest && (group.size <= 2 * fine || lobes);
+    OwnCuts own{cutter, work, px, group, wide ? wider : rule, part};
     if (tried) result = groupCut(own, g, finest);
     if (tried && own.farOff(result)) {  // split into its surfaces first, as any group alone
       const bool split = g.cosSpread < kSurfaceSpread && surfaces(px, group, g, todo);
