@@ -41,21 +41,35 @@ RenderRequest request(Method method) {
   return r;
 }
 
-// Per covered pixel at the maximum cut: the largest channel's difference over the largest
-// reference channel.
-std::vector<double> errorsAtTheMaximum(const RenderOutcome& out, const Image& reference) {
-  std::vector<double> errors;
+// A covered pixel's largest channel difference from the reference, and the reference's
+// largest channel.
+struct PixelError {
+  double diff, peak;
+};
+
+// The errors of the covered pixels at the maximum cut (atMax) or below it.
+std::vector<PixelError> pixelErrors(const RenderOutcome& out, const Image& reference, bool atMax) {
+  std::vector<PixelError> errors;
   for (int y = 0; y < kHeight; ++y) {
     for (int x = 0; x < kWidth; ++x) {
       const float* r = reference.pixel(x, y);
       const float* c = out.image.pixel(x, y);
-      if (r[3] == 0.0f || !out.frame.cuts.atMaxCut[std::size_t(y) * kWidth + x]) continue;
-      const double peak = std::max({double(r[0]), double(r[1]), double(r[2])});
-      double diff = 0.0;
-      for (int ch = 0; ch < 3; ++ch) diff = std::max(diff, std::abs(double(c[ch]) - double(r[ch])));
-      errors.push_back(diff / std::max(peak, 1e-30));
+      if (r[3] == 0.0f || (out.frame.cuts.atMaxCut[std::size_t(y) * kWidth + x] != 0) != atMax)
+        continue;
+      PixelError e{0.0, std::max({double(r[0]), double(r[1]), double(r[2])})};
+      for (int ch = 0; ch < 3; ++ch)
+        e.diff = std::max(e.diff, std::abs(double(c[ch]) - double(r[ch])));
+      errors.push_back(e);
     }
   }
+  return errors;
+}
+
+// Per covered pixel at the maximum cut: its relative error, sorted.
+std::vector<double> errorsAtTheMaximum(const RenderOutcome& out, const Image& reference) {
+  std::vector<double> errors;
+  for (const PixelError& e : pixelErrors(out, reference, true))
+    errors.push_back(e.diff / std::max(e.peak, 1e-30));
   std::sort(errors.begin(), errors.end());
   return errors;
 }
@@ -101,19 +115,11 @@ TEST(LightcutsWalks, AWalkBoundsSpotConesAsSharedCutsDo) {
     r.lightcuts.exactLimit = 0;  // no exact sums: pixels at the maximum keep their estimate
     r.lightcuts.tileSize = 1;    // every pixel walks its own cut
     const RenderOutcome out = renderScene(scene, r);
-    int compared = 0, failing = 0;  // pixels below the maximum, and those off by more than ε
-    for (int y = 0; y < kHeight; ++y) {
-      for (int x = 0; x < kWidth; ++x) {
-        const float *ref = reference.pixel(x, y), *c = out.image.pixel(x, y);
-        if (ref[3] == 0.0f || out.frame.cuts.atMaxCut[std::size_t(y) * kWidth + x]) continue;
-        ++compared;
-        double diff = 0.0;
-        for (int ch = 0; ch < 3; ++ch)
-          diff = std::max(diff, std::abs(double(c[ch]) - double(ref[ch])));
-        const double peak = std::max({double(ref[0]), double(ref[1]), double(ref[2])});
-        if (diff > (r.lightcuts.error + kFloatSlack) * peak + kAbsoluteFloor) ++failing;
-      }
-    }
+    const std::vector<PixelError> below = pixelErrors(out, reference, false);
+    const int compared = int(below.size());
+    const int failing = int(std::count_if(below.begin(), below.end(), [&](const PixelError& e) {
+      return e.diff > (r.lightcuts.error + kFloatSlack) * e.peak + kAbsoluteFloor;
+    }));
     const CutStats& cuts = out.frame.cuts;
     std::cout << count << " street lights: " << cuts.pixelsAtMaxCut << " of " << cuts.pixels
               << " pixels at the maximum; of the " << compared << " others " << failing
