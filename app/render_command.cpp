@@ -82,6 +82,11 @@ void addCutStats(nlohmann::json& stats, const RenderArgs& a, const RenderRequest
   stats["surface_splits"] = c.surfaceSplits;
   stats["light_evaluations_per_pixel"] = c.lightEvaluations;
   stats["node_evaluations_per_pixel"] = c.nodeEvaluations;
+  for (int k = 0; k < kCutKinds; ++k) {
+    const CutWork& w = c.work[std::size_t(k)];
+    stats["cut_work"][kCutKindNames[k]] = {
+        {"cuts", w.cuts}, {"full", w.full}, {"bounds", w.bounds}};
+  }
   stats["covered_pixels"] = c.pixels;
   if (out.method == Method::Lightcuts) {
     stats["error"] = request.lightcuts.error;

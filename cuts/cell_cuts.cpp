@@ -255,7 +255,9 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     }
     const std::vector<int> grown = grow(px, cellOfPixel, outside);
     for (const std::size_t i : pending) outside[i] = 0;
-    out.boundEvaluations += cutCells(grown, rule, threads, level);
+    const CutWork cells = cutCells(grown, rule, threads, level);
+    out.boundEvaluations += cells.bounds;
+    out.work[std::size_t(CutKind::Cell)].add(cells);
     grownAll.insert(grownAll.end(), grown.begin(), grown.end());
     for (const std::size_t i : pending) {
       const int c = cellOfPixel[i];
@@ -271,8 +273,8 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
   return out;
 }
 
-long long CellCuts::cutCells(const std::vector<int>& grown, const CutRule& rule, int threads,
-                             int level) {
+CutWork CellCuts::cutCells(const std::vector<int>& grown, const CutRule& rule, int threads,
+                           int level) {
   // Cells split (or fall back to the frame's squares) only where their cut fills up, or past
   // half of it still far from the rule (cut_region::kHopeless), under either rule; the
   // frame's squares split under the node rule past splitCut (kSplitCut says why). A square's
@@ -282,7 +284,7 @@ long long CellCuts::cutCells(const std::vector<int>& grown, const CutRule& rule,
   CutRule cellRule = rule;
   cellRule.shareFull = false;
   const int workers = std::clamp(threads, 1, std::max(int(grown.size()), 1));
-  std::vector<long long> bounds(std::size_t(workers), 0);
+  std::vector<CutWork> made(static_cast<std::size_t>(workers));
   auto work = [&](int t) {
     CutWorkspace workspace;
     for (std::size_t k = std::size_t(t); k < grown.size(); k += std::size_t(workers)) {
@@ -293,14 +295,14 @@ long long CellCuts::cutCells(const std::vector<int>& grown, const CutRule& rule,
       cell.split = cell.perPixel && level < kMaxCellLevel;
       if (cell.perPixel) cell.entries.clear();
       cell.entries.shrink_to_fit();
-      bounds[std::size_t(t)] += cell.cut.bounds;
+      made[std::size_t(t)].add(cell.cut.bounds, cell.perPixel);
     }
   };
   for (const int c : grown) words_ -= cells_[std::size_t(c)].entries.size();
   onThreads(workers, work);
   for (const int c : grown) words_ += cells_[std::size_t(c)].entries.size();
-  long long sum = 0;
-  for (const long long b : bounds) sum += b;
+  CutWork sum;
+  for (const CutWork& w : made) sum.add(w);
   return sum;
 }
 
@@ -367,6 +369,8 @@ void CellCuts::frameCuts(const GBufferPixels& px, const CutRule& rule, int threa
   out.perPixelGroups = squares.perPixelGroups;
   out.surfaceSplits = squares.surfaceSplits;
   out.boundEvaluations += squares.boundEvaluations;
+  for (int kind = 0; kind < kCutKinds; ++kind)
+    out.work[std::size_t(kind)].add(squares.work[std::size_t(kind)]);
   out.made = int(grownAll.size()) + squares.made;
 }
 

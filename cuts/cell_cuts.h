@@ -88,9 +88,9 @@ class CellCuts {
   // pixels' cells) to hold those pixels; returns those cells, in order.
   std::vector<int> grow(const GBufferPixels& px, const std::vector<int>& cellOfPixel,
                         const std::vector<std::uint8_t>& outside);
-  // Finds the cuts of the cells `grown`, at `level`, on `threads` threads; returns the node
-  // bounds evaluated.
-  long long cutCells(const std::vector<int>& grown, const CutRule& rule, int threads, int level);
+  // Finds the cuts of the cells `grown`, at `level`, on `threads` threads; returns how many,
+  // how many filled up, and the node bounds evaluated.
+  CutWork cutCells(const std::vector<int>& grown, const CutRule& rule, int threads, int level);
   // The frame's cuts into `out`: its cells' in the order the pixels first use them (cellOfPixel;
   // grownAll, the cells cut this frame), then squares' cuts for the pixels of full cells.
   void frameCuts(const GBufferPixels& px, const CutRule& rule, int threads,

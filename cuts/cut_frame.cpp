@@ -41,6 +41,7 @@ struct Part {
   std::vector<std::vector<std::uint32_t>> chunks;  // those filled
   std::vector<std::size_t> chunkEnd;               // per chunk filled, the cuts up to its end
   long long bounds = 0;                            // split groups' too
+  CutWorks work{};                                 // the same by kind of cut
   int perPixel = 0, splits = 0;
 
   explicit Part(std::size_t words) : chunkWords(words) { entries.reserve(chunkWords); }
@@ -50,6 +51,10 @@ struct Part {
     chunkEnd.push_back(cuts.size());
     entries = {};
     entries.reserve(chunkWords);
+  }
+  void count(CutKind kind, const RegionCut& r) {
+    bounds += r.bounds;
+    work[std::size_t(kind)].add(r.bounds, r.perPixel || r.full);
   }
   std::size_t words() const {
     std::size_t n = entries.size();
@@ -143,7 +148,7 @@ bool ownCutsFit(const TileCutter& cutter, CutWorkspace& work, const GBufferPixel
     point.cosSpread = 1.0f;
     point.sinSpread = 0.0f;
     const RegionCut r = cutter.cutRegion(work, point, own, true, unused);
-    part.bounds += r.bounds;
+    part.count(CutKind::Probe, r);
     if (rule.exactFull) {
       const int size = r.counts[0] + r.counts[1] + r.counts[2] + r.folded;
       if (r.perPixel || size * kWalkCost > cutter.lights()) return false;
@@ -183,12 +188,12 @@ RegionCut groupCut(OwnCuts& own, const ShadingRegion& g, bool finest) {
   const std::size_t entry = part.entries.size();
   const CutSeed* seed = own.group.seed.get();
   RegionCut r = own.cutter.cutRegion(own.work, g, own.rule, finest, part.entries, seed);
-  part.bounds += r.bounds;
+  part.count(seed ? CutKind::FromSeed : CutKind::FromRoots, r);
   if ((r.perPixel || r.full) && seed && !(own.farOff(r) && own.fit())) {
     part.entries.resize(entry);
     own.group.seed = nullptr;
     r = own.cutter.cutRegion(own.work, g, own.rule, finest, part.entries);
-    part.bounds += r.bounds;
+    part.count(CutKind::Retry, r);
   }
   return r;
 }
@@ -318,7 +323,7 @@ static void seedSquare(const TileCutter& cutter, CutWorkspace& work, const GBuff
   const std::size_t entry = part.entries.size();
   const RegionCut r =
       cutter.cutRegion(work, g, rule, false, part.entries, group.seed.get(), next.get());
-  part.bounds += r.bounds;
+  part.count(CutKind::Seed, r);
   OwnCuts own{cutter, work, px, group, rule, part};
   // Hopeless from the top (quarters would fill up too): an exact cut at once where it may be,
   // else its full cut, unless its pixels' own cuts may meet the rule.
@@ -447,6 +452,8 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
     firstCut[k] = std::uint32_t(cuts);
     cuts += parts[k].cuts.size();
     out.boundEvaluations += parts[k].bounds;
+    for (int kind = 0; kind < kCutKinds; ++kind)
+      out.work[std::size_t(kind)].add(parts[k].work[std::size_t(kind)]);
     out.perPixelGroups += parts[k].perPixel;
     out.surfaceSplits += parts[k].splits;
   }

@@ -221,6 +221,7 @@ CutStats LightcutsMethod::cutStats() const {
   stats.exactCuts = tileInfo_.exactCuts;
   stats.perPixelGroups = tileInfo_.perPixelGroups;
   stats.surfaceSplits = tileInfo_.surfaceSplits;
+  stats.work = tileInfo_.work;
   double cut = 0.0, lightEvals = 0.0, nodeEvals = 0.0;
   stats.atMaxCut.assign(std::size_t(width_) * height_, 0);
   for (std::size_t i = 0; i < texels.size(); i += 4) {

@@ -87,6 +87,7 @@ struct CutStats {
   double lightEvaluations = 0.0;       // per pixel
   double nodeEvaluations = 0.0;        // per pixel (error bounds or distance tests), with the
                                        // tile cuts' bounds on the CPU spread over the pixels
+  CutWorks work{};                     // the cuts found on the CPU by kind (cuts/tile_cuts.h)
   std::vector<std::uint8_t> atMaxCut;  // per pixel, rows top-down: 1 where the cut hit the maximum
 };
 

@@ -247,6 +247,19 @@ TEST(Cli, LightcutsWritesCutStatistics) {
   EXPECT_GE(stats["pixels_at_max_cut"].get<int>(), 0);
   EXPECT_GT(stats["light_evaluations_per_pixel"].get<double>(), 0.0);
   EXPECT_GT(stats["covered_pixels"].get<int>(), 64 * 48 / 2);
+  // The CPU's cuts by kind: a 64×48 frame has two 32×32 squares finding seeds; their node
+  // bounds are among the node evaluations.
+  long long bounds = 0;
+  for (const char* kind : {"seeds", "from_seeds", "retries", "from_roots", "probes", "cells"}) {
+    const auto& w = stats["cut_work"][kind];
+    EXPECT_LE(w["full"].get<int>(), w["cuts"].get<int>()) << kind;
+    bounds += w["bounds"].get<long long>();
+  }
+  EXPECT_GE(stats["cut_work"]["seeds"]["cuts"].get<int>(), 2);
+  EXPECT_EQ(stats["cut_work"]["cells"]["cuts"].get<int>(), 0);
+  EXPECT_GT(bounds, 0);
+  EXPECT_LE(double(bounds), stats["node_evaluations_per_pixel"].get<double>() *
+                                stats["covered_pixels"].get<double>() * 1.0001);
 }
 
 TEST(Cli, LimitsRefuseScenesBeforeReadingThem) {

@@ -139,6 +139,44 @@ TEST(TileCuts, NodesDecodedOnFirstUseGiveTheSameCutsOnAnyNumberOfThreads) {
     ASSERT_EQ(cutWords(one, oneTexels, i), cutWords(four, fourTexels, i)) << "pixel " << i;
 }
 
+// TileCuts::work counts every cut the CPU finds by its kind (cuts/tile_cuts.h): all the
+// bounds are in it, on any number of threads. 64×64 pixels in 16×16 tiles: four 32×32
+// squares (or their surfaces) find seeds. With at most 400 nodes at ε = 0.001 groups fill
+// up, start over from the roots and fill up again; under the total rule, full seeds leave
+// their quarters to start from the roots, and full cuts far off the rule have their pixels
+// probed.
+TEST(TileCuts, CutWorkCountsEveryCutByKind) {
+  const SyntheticGBuffer g;
+  const std::vector<Light> lights = layoutLights(LightLayout::Uniform, 2000, 7);
+  const TileCutter cutter(packLightTrees(buildLightTrees(lights)), lights);
+  const auto kind = [](const TileCuts& c, CutKind k) { return c.work[std::size_t(k)]; };
+  for (const CutRule& rule :
+       {CutRule{0.02f, false, 2000}, CutRule{0.001f, false, 400}, CutRule{0.02f, true, 400}}) {
+    const TileCuts one = cutter.cut(g.pixels(), 16, rule, 1);
+    const TileCuts four = cutter.cut(g.pixels(), 16, rule, 4);
+    long long bounds = 0;
+    for (int k = 0; k < kCutKinds; ++k) {
+      const CutWork& a = one.work[std::size_t(k)];
+      const CutWork& b = four.work[std::size_t(k)];
+      EXPECT_EQ(a.cuts, b.cuts) << k;
+      EXPECT_EQ(a.full, b.full) << k;
+      EXPECT_EQ(a.bounds, b.bounds) << k;
+      EXPECT_LE(a.full, a.cuts) << k;
+      EXPECT_EQ(a.cuts == 0, a.bounds == 0) << k;
+      bounds += a.bounds;
+    }
+    EXPECT_EQ(bounds, one.boundEvaluations);
+    EXPECT_GE(kind(one, CutKind::Seed).cuts, 4);  // more where a square splits by its normals
+    if (!rule.total) EXPECT_GT(kind(one, CutKind::FromSeed).cuts, 0);
+    EXPECT_EQ(kind(one, CutKind::Cell).cuts, 0);
+    if (rule.error < 0.01f) {
+      EXPECT_GT(kind(one, CutKind::Retry).full, 0);
+      EXPECT_GT(kind(one, CutKind::FromRoots).cuts, 0);
+    }
+    EXPECT_EQ(kind(one, CutKind::Probe).cuts > 0, rule.total);
+  }
+}
+
 // Each thread's entries go into chunks (CutRule::chunkWords), laid out one after another:
 // with chunks of 64 words, closed after nearly every square, the frame's texels are word for
 // word those of one chunk, and on two threads each pixel's cut is the same.
