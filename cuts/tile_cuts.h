@@ -131,6 +131,23 @@ struct CutRule {
   std::size_t chunkWords = std::size_t(1) << 22;
 };
 
+// The CPU's cuts of a frame by kind, and the node bounds each took (--stats cut_work): squares
+// finding the seeds their quarters start from, groups starting from their seed, groups
+// starting over from the roots after their seed's cut filled up, groups without a seed, the
+// one-pixel probes of whether a group's pixels walk their own cuts, and playback's cells.
+enum class CutKind { Seed, FromSeed, Retry, FromRoots, Probe, Cell };
+inline constexpr int kCutKinds = 6;
+inline constexpr const char* kCutKindNames[kCutKinds] = {"seeds",      "from_seeds", "retries",
+                                                         "from_roots", "probes",     "cells"};
+struct CutWork {
+  int cuts = 0;
+  int full = 0;  // of them, those that filled up before the rule held (perPixel or full)
+  long long bounds = 0;
+  void add(long long b, bool filled) { ++cuts, full += filled, bounds += b; }
+  void add(const CutWork& o) { cuts += o.cuts, full += o.full, bounds += o.bounds; }
+};
+using CutWorks = std::array<CutWork, kCutKinds>;
+
 // The frame's shared cuts. Each pixel names its cut (cutOfPixel, one word per pixel, rows
 // bottom-up as GL's; kNoSharedCut where it cuts for itself), and the cuts are texels of 4
 // words (GL_RGBA32UI), one texture buffer:
@@ -157,23 +174,6 @@ struct CutRule {
 //                         offset (as the light texture holds them)
 // A cut belongs to a group of pixels: a square, or the pixels of one surface in a square
 // (cuts/pixel_groups.h), or in playback a cell of the scene (cuts/cell_cuts.h).
-// The CPU's cuts of a frame by kind, and the node bounds each took (--stats cut_work): squares
-// finding the seeds their quarters start from, groups starting from their seed, groups
-// starting over from the roots after their seed's cut filled up, groups without a seed, the
-// one-pixel probes of whether a group's pixels walk their own cuts, and playback's cells.
-enum class CutKind { Seed, FromSeed, Retry, FromRoots, Probe, Cell };
-inline constexpr int kCutKinds = 6;
-inline constexpr const char* kCutKindNames[kCutKinds] = {"seeds",      "from_seeds", "retries",
-                                                         "from_roots", "probes",     "cells"};
-struct CutWork {
-  int cuts = 0;
-  int full = 0;  // of them, those that filled up before the rule held (RegionCut::perPixel)
-  long long bounds = 0;
-  void add(long long b, bool filled) { ++cuts, full += filled, bounds += b; }
-  void add(const CutWork& o) { cuts += o.cuts, full += o.full, bounds += o.bounds; }
-};
-using CutWorks = std::array<CutWork, kCutKinds>;
-
 struct TileCuts {
   std::vector<std::uint32_t> cutOfPixel;  // per pixel
   CutTexels texels;                       // 4 words each, in pieces
