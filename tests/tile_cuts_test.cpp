@@ -167,7 +167,9 @@ TEST(TileCuts, CutWorkCountsEveryCutByKind) {
     }
     EXPECT_EQ(bounds, one.boundEvaluations);
     EXPECT_GE(kind(one, CutKind::Seed).cuts, 4);  // more where a square splits by its normals
-    if (!rule.total) EXPECT_GT(kind(one, CutKind::FromSeed).cuts, 0);
+    if (!rule.total) {
+      EXPECT_GT(kind(one, CutKind::FromSeed).cuts, 0);
+    }
     EXPECT_EQ(kind(one, CutKind::Cell).cuts, 0);
     if (rule.error < 0.01f) {
       EXPECT_GT(kind(one, CutKind::Retry).full, 0);
