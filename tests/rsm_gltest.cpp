@@ -111,7 +111,9 @@ TEST(Indirect, TheChoiceMeasureHoldsAtItsGridsEdges) {
     const std::vector<double> flux = measureLightFlux(lights, *samples);
     for (std::size_t i = 0; i < lights.size(); ++i) {
       const double expected = oracle(lights[i], *samples);
-      if (samples == &floor) EXPECT_GT(expected, 0.0) << "light " << i;
+      if (samples == &floor) {
+        EXPECT_GT(expected, 0.0) << "light " << i;
+      }
       EXPECT_NEAR(flux[i], expected, 1e-6 * expected) << "light " << i;
     }
   }
