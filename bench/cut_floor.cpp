@@ -109,17 +109,18 @@ double maxOf(glm::dvec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 // Per tree, per node: an error per channel (0 for leaves).
 using NodeErrors = std::vector<std::vector<glm::dvec3>>;
 
-// The total rule's cut from the roots, refining the node of the largest error first until
-// the errors' sum B is within ε of total − B in every channel, or within the absolute floor.
-int floorCut(const std::vector<LightTree>& trees, const NodeErrors& errors, glm::dvec3 total,
-             double error) {
+// The total rule's cut from the roots, refining the node of the largest error (times `share`)
+// first until the errors' sum B is within ε of total − B in every channel, or within the
+// absolute floor.
+int floorCut(const std::vector<LightTree>& trees, const NodeErrors& errors, double share,
+             glm::dvec3 total, double error) {
   using Entry = std::pair<double, std::pair<int, int>>;  // largest channel of an error; node
   std::priority_queue<Entry> open;
   glm::dvec3 bound(0.0);
   int size = 0;
   auto add = [&](int t, int i) {
     if (trees[std::size_t(t)].nodes[std::size_t(i)].empty()) return;
-    const glm::dvec3 e = errors[std::size_t(t)][std::size_t(i)];
+    const glm::dvec3 e = share * errors[std::size_t(t)][std::size_t(i)];
     ++size;
     bound += e;
     if (maxOf(e) > 0.0) open.push({maxOf(e), {t, i}});
@@ -130,7 +131,7 @@ int floorCut(const std::vector<LightTree>& trees, const NodeErrors& errors, glm:
     const auto [t, i] = open.top().second;
     open.pop();
     --size;
-    bound -= errors[std::size_t(t)][std::size_t(i)];
+    bound -= share * errors[std::size_t(t)][std::size_t(i)];
     add(t, 2 * i + 1);
     add(t, 2 * i + 2);
   }
@@ -183,12 +184,11 @@ struct Floors {
 Floors floorsAt(const std::vector<LightTree>& trees, const std::vector<Light>& lights,
                 const LightOrder& order, const Sample& s, double error) {
   glm::dvec3 total(0.0);
-  NodeErrors widths, halves, centroids;
+  NodeErrors widths, centroids;
   for (const LightTree& tree : trees) {
     const std::size_t count = tree.nodes.size();
     std::vector<NodeSums> sums(count);
     widths.emplace_back(count, glm::dvec3(0.0));
-    halves.emplace_back(count, glm::dvec3(0.0));
     centroids.emplace_back(count, glm::dvec3(0.0));
     for (std::size_t i = count; i-- > 0;) {
       const LightTreeNode& node = tree.nodes[i];
@@ -215,12 +215,11 @@ Floors floorsAt(const std::vector<LightTree>& trees, const std::vector<Light>& l
       n.add(sums[2 * i + 1]);
       n.add(sums[2 * i + 2]);
       widths.back()[i] = n.intensity * (n.hi - n.lo);
-      halves.back()[i] = 0.5 * widths.back()[i];
       centroids.back()[i] = centroidError(tree.type, n, s);
     }
   }
-  return {floorCut(trees, widths, total, error), floorCut(trees, halves, total, error),
-          floorCut(trees, centroids, total, error)};
+  return {floorCut(trees, widths, 1.0, total, error), floorCut(trees, widths, 0.5, total, error),
+          floorCut(trees, centroids, 1.0, total, error)};
 }
 
 void report(const char* what, std::vector<int> sizes, int maxCut) {

@@ -66,7 +66,7 @@ void cutFrame(benchmark::State& state) {
     benchmark::DoNotOptimize(cuts.texels.head.data());
   }
   state.counters["threads"] = threads;
-  state.counters["bounds"] = double(cuts.boundEvaluations);
+  state.counters["bounds"] = double(cuts.boundEvaluations());
   state.counters["entry_texels"] = double(cuts.texels.texels() - 2 * std::size_t(cuts.sharedCuts));
   state.counters["shared_cuts"] = cuts.sharedCuts;
   state.counters["per_pixel_groups"] = cuts.perPixelGroups;

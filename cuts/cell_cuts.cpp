@@ -255,9 +255,7 @@ TileCuts CellCuts::cut(const GBufferPixels& px, const CutRule& rule, int threads
     }
     const std::vector<int> grown = grow(px, cellOfPixel, outside);
     for (const std::size_t i : pending) outside[i] = 0;
-    const CutWork cells = cutCells(grown, rule, threads, level);
-    out.boundEvaluations += cells.bounds;
-    out.work[std::size_t(CutKind::Cell)].add(cells);
+    out.work[std::size_t(CutKind::Cell)].add(cutCells(grown, rule, threads, level));
     grownAll.insert(grownAll.end(), grown.begin(), grown.end());
     for (const std::size_t i : pending) {
       const int c = cellOfPixel[i];
@@ -368,9 +366,7 @@ void CellCuts::frameCuts(const GBufferPixels& px, const CutRule& rule, int threa
   out.exactCuts = squares.exactCuts;
   out.perPixelGroups = squares.perPixelGroups;
   out.surfaceSplits = squares.surfaceSplits;
-  out.boundEvaluations += squares.boundEvaluations;
-  for (int kind = 0; kind < kCutKinds; ++kind)
-    out.work[std::size_t(kind)].add(squares.work[std::size_t(kind)]);
+  addWorks(out.work, squares.work);
   out.made = int(grownAll.size()) + squares.made;
 }
 

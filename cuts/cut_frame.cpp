@@ -40,8 +40,7 @@ struct Part {
   std::vector<std::uint32_t> entries;              // the chunk being filled
   std::vector<std::vector<std::uint32_t>> chunks;  // those filled
   std::vector<std::size_t> chunkEnd;               // per chunk filled, the cuts up to its end
-  long long bounds = 0;                            // split groups' too
-  CutWorks work{};                                 // the same by kind of cut
+  CutWorks work{};  // the cuts found by kind, and their node bounds (split groups' too)
   int perPixel = 0, splits = 0;
 
   explicit Part(std::size_t words) : chunkWords(words) { entries.reserve(chunkWords); }
@@ -53,7 +52,6 @@ struct Part {
     entries.reserve(chunkWords);
   }
   void count(CutKind kind, const RegionCut& r) {
-    bounds += r.bounds;
     work[std::size_t(kind)].add(r.bounds, r.perPixel || r.full);
   }
   std::size_t words() const {
@@ -373,9 +371,10 @@ static void cutSquare(const TileCutter& cutter, CutWorkspace& work, const GBuffe
     RegionCut result;
     const std::size_t entry = part.entries.size();
     const bool finest = group.size <= fine;
-    // Past materials(), a group's pixels are all lobe-dominated or none.
-    const bool lobes = px.albedo && px.specular && lobeDominated(px, std::size_t(group.pixels[0]));
-    const bool wide = !finest && (group.size <= 2 * fine || lobes);
+    // Past materials(), a group's pixels are all lobe-dominated or none: its first speaks for it.
+    const bool wide =
+        !finest && (group.size <= 2 * fine ||
+                    (px.albedo && px.specular && lobeDominated(px, std::size_t(group.pixels[0]))));
     OwnCuts own{cutter, work, px, group, wide ? wider : rule, part};
     if (tried) result = groupCut(own, g, finest);
     if (tried && own.farOff(result)) {  // split into its surfaces first, as any group alone
@@ -451,9 +450,7 @@ TileCuts TileCutter::cut(const GBufferPixels& px, int tileSize, const CutRule& r
   for (std::size_t k = 0; k < parts.size(); ++k) {
     firstCut[k] = std::uint32_t(cuts);
     cuts += parts[k].cuts.size();
-    out.boundEvaluations += parts[k].bounds;
-    for (int kind = 0; kind < kCutKinds; ++kind)
-      out.work[std::size_t(kind)].add(parts[k].work[std::size_t(kind)]);
+    addWorks(out.work, parts[k].work);
     out.perPixelGroups += parts[k].perPixel;
     out.surfaceSplits += parts[k].splits;
   }

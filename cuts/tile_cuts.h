@@ -147,6 +147,9 @@ struct CutWork {
   void add(const CutWork& o) { cuts += o.cuts, full += o.full, bounds += o.bounds; }
 };
 using CutWorks = std::array<CutWork, kCutKinds>;
+inline void addWorks(CutWorks& to, const CutWorks& from) {
+  for (int k = 0; k < kCutKinds; ++k) to[std::size_t(k)].add(from[std::size_t(k)]);
+}
 
 // The frame's shared cuts. Each pixel names its cut (cutOfPixel, one word per pixel, rows
 // bottom-up as GL's; kNoSharedCut where it cuts for itself), and the cuts are texels of 4
@@ -177,8 +180,7 @@ using CutWorks = std::array<CutWork, kCutKinds>;
 struct TileCuts {
   std::vector<std::uint32_t> cutOfPixel;  // per pixel
   CutTexels texels;                       // 4 words each, in pieces
-  long long boundEvaluations = 0;         // on the CPU, all groups together
-  CutWorks work{};                        // the same by kind of cut
+  CutWorks work{};                        // the CPU's cuts by kind, and their node bounds
   int sharedCuts = 0;                     // groups with a shared cut
   int exactCuts = 0;                      // of them, exact ones (RegionCut::exact)
   int perPixelGroups = 0;                 // covered groups left to per-pixel cuts
@@ -186,6 +188,12 @@ struct TileCuts {
   // Cuts found on the CPU for this frame (shared, or left to per-pixel cuts), and cuts kept
   // from earlier frames (cuts/cell_cuts.h).
   int made = 0, kept = 0;
+  // Node bounds evaluated on the CPU, all groups together.
+  long long boundEvaluations() const {
+    long long n = 0;
+    for (const CutWork& w : work) n += w.bounds;
+    return n;
+  }
 };
 
 inline constexpr std::uint32_t kNoSharedCut = 0xffffffffu;

@@ -243,7 +243,7 @@ CutStats LightcutsMethod::cutStats() const {
   if (stats.pixels > 0) {
     stats.averageCut = cut / stats.pixels;
     stats.lightEvaluations = lightEvals / stats.pixels;
-    stats.nodeEvaluations = (nodeEvals + double(tileInfo_.boundEvaluations)) / stats.pixels;
+    stats.nodeEvaluations = (nodeEvals + double(tileInfo_.boundEvaluations())) / stats.pixels;
   }
   return stats;
 }
